@@ -1,0 +1,58 @@
+//! # sightline
+//!
+//! A `no_std`, allocation-free geometry and raster core for microcontroller
+//! displays, following a textbook chapter on *viewing processes*: object and
+//! camera transforms, parallel and perspective projection, and a diagnosable
+//! Gaussian-elimination solver, generic over `f32`, `f64` and saturating
+//! fixed point.
+//!
+//! ## Layers (bottom to top)
+//!
+//! | module | what it holds |
+//! |---|---|
+//! | [`scalar`] | the [`Scalar`](scalar::Scalar) trait for `f32`, `f64` and [`Fx`](scalar::Fx) fixed point; overflow policy |
+//! | [`math`] | `Vec2/3/4`, `Mat3`, `Affine3` (3×4), `Mat4` |
+//! | [`solve`] | Gaussian elimination with partial pivoting, N×N with M right-hand sides, with pivot growth and a condition estimate |
+//! | [`transform`] | object→world from roll, pitch, yaw and an origin |
+//! | [`camera`] | cameras from angles, orthonormal vectors or general vectors (via [`solve`]); projections |
+//!
+//! ## Coordinate conventions
+//!
+//! These hold everywhere in the crate.
+//!
+//! - **World** space is right-handed with **+Y up** (as OBJ and glTF files
+//!   are). Angles are in radians and follow the right-hand rule:
+//!   **roll** about +Z, **pitch** about +X, **yaw** about +Y, applied in
+//!   that order: `object→world = T(O)·Ry(yaw)·Rx(pitch)·Rz(roll)`.
+//! - **View** space is right-handed with the eye at the origin, **+Z the
+//!   direction of view**, **+X to the right** of the screen and **+Y down**
+//!   the screen. A camera with zero angles looks along world −Z with world
+//!   +Y up on the screen.
+//! - **Screen** space is in pixels: x to the right, y down, origin at the
+//!   top-left corner of the top-left pixel, so pixel (i, j) has its centre
+//!   at (i + ½, j + ½). Perspective projection is `x_s = cx + f·x/z`,
+//!   `y_s = cy + f·y/z`, with the focus distance `f` in pixels and
+//!   (cx, cy) usually the viewport centre.
+//!
+//! ## Numeric representations
+//!
+//! Kernels are written once, generic over [`Scalar`](scalar::Scalar). On a
+//! core without an FPU (Cortex-M0/M0+, RP2040) use [`I16F16`](scalar::I16F16);
+//! on Cortex-M4F/M7 `f32` is hardware arithmetic. `f64` is the reference
+//! used by tests. Fixed point saturates and never wraps; see
+//! [`scalar`] for the exact policy.
+//!
+//! ## Crate features
+//!
+//! None yet: everything above is always compiled, and generic code costs
+//! nothing until it is instantiated.
+
+#![no_std]
+#![forbid(unsafe_code)]
+#![deny(missing_docs, missing_debug_implementations)]
+
+pub mod camera;
+pub mod math;
+pub mod scalar;
+pub mod solve;
+pub mod transform;

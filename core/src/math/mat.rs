@@ -1,0 +1,323 @@
+//! 3×3, affine 3×4 and 4×4 matrices over any [`Scalar`].
+//!
+//! Storage is row-major (`m[row][col]`), matching the chapter's matrix
+//! equations, and vectors are columns: `p' = M·p`. Composition `a * b`
+//! applies `b` first.
+
+use super::vec::{Vec3, Vec4};
+use crate::scalar::Scalar;
+use crate::solve::{self, SolveError};
+use core::ops::Mul;
+
+/// A 3×3 matrix (rotation, scale, shear).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Mat3<S> {
+    /// Rows.
+    pub m: [[S; 3]; 3],
+}
+
+/// An affine transform `p ↦ M·p + t`: a 3×4 matrix `[M | t]` with an
+/// implicit last row (0, 0, 0, 1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Affine3<S> {
+    /// The linear part.
+    pub matrix: Mat3<S>,
+    /// The translation.
+    pub translation: Vec3<S>,
+}
+
+/// A 4×4 matrix, for projections (homogeneous w ≠ 1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Mat4<S> {
+    /// Rows.
+    pub m: [[S; 4]; 4],
+}
+
+impl<S: Scalar> Mat3<S> {
+    /// The identity.
+    pub const IDENTITY: Self = Self {
+        m: [
+            [S::ONE, S::ZERO, S::ZERO],
+            [S::ZERO, S::ONE, S::ZERO],
+            [S::ZERO, S::ZERO, S::ONE],
+        ],
+    };
+
+    /// From three rows.
+    #[must_use]
+    pub const fn from_rows(r0: Vec3<S>, r1: Vec3<S>, r2: Vec3<S>) -> Self {
+        Self {
+            m: [r0.to_array(), r1.to_array(), r2.to_array()],
+        }
+    }
+    /// From three columns.
+    #[must_use]
+    pub fn from_cols(c0: Vec3<S>, c1: Vec3<S>, c2: Vec3<S>) -> Self {
+        Self::from_rows(c0, c1, c2).transpose()
+    }
+    /// Row `i` (0..3).
+    #[must_use]
+    pub fn row(&self, i: usize) -> Vec3<S> {
+        Vec3::from_array(self.m[i])
+    }
+    /// Column `j` (0..3).
+    #[must_use]
+    pub fn col(&self, j: usize) -> Vec3<S> {
+        Vec3::new(self.m[0][j], self.m[1][j], self.m[2][j])
+    }
+    /// The transpose.
+    #[must_use]
+    pub fn transpose(&self) -> Self {
+        let m = &self.m;
+        Self {
+            m: [
+                [m[0][0], m[1][0], m[2][0]],
+                [m[0][1], m[1][1], m[2][1]],
+                [m[0][2], m[1][2], m[2][2]],
+            ],
+        }
+    }
+    /// `M·v`.
+    #[must_use]
+    pub fn mul_vec3(&self, v: Vec3<S>) -> Vec3<S> {
+        Vec3::new(self.row(0).dot(v), self.row(1).dot(v), self.row(2).dot(v))
+    }
+    /// `self · rhs`.
+    #[must_use]
+    pub fn mul_mat3(&self, rhs: &Self) -> Self {
+        let mut out = Self::IDENTITY;
+        for i in 0..3 {
+            for j in 0..3 {
+                out.m[i][j] = self.row(i).dot(rhs.col(j));
+            }
+        }
+        out
+    }
+    /// The determinant (cofactor expansion along the first row).
+    #[must_use]
+    pub fn determinant(&self) -> S {
+        self.row(0).dot(self.row(1).cross(self.row(2)))
+    }
+    /// The inverse, by Gaussian elimination with partial pivoting on
+    /// `M X = I` (see [`crate::solve`]).
+    ///
+    /// # Errors
+    /// Whatever the solver reports: singular, ill-conditioned to working
+    /// precision, overflow or non-finite input.
+    pub fn try_inverse(&self) -> Result<Self, SolveError> {
+        let s = solve::solve(&self.m, &Self::IDENTITY.m)?;
+        Ok(Self { m: s.x })
+    }
+    /// Rotation by `angle` radians about +X (right-handed: Y turns toward Z).
+    #[must_use]
+    pub fn rotation_x(angle: S) -> Self {
+        let (s, c) = angle.sin_cos();
+        let (o, z) = (S::ONE, S::ZERO);
+        Self {
+            m: [[o, z, z], [z, c, -s], [z, s, c]],
+        }
+    }
+    /// Rotation by `angle` radians about +Y (right-handed: Z turns toward X).
+    #[must_use]
+    pub fn rotation_y(angle: S) -> Self {
+        let (s, c) = angle.sin_cos();
+        let (o, z) = (S::ONE, S::ZERO);
+        Self {
+            m: [[c, z, s], [z, o, z], [-s, z, c]],
+        }
+    }
+    /// Rotation by `angle` radians about +Z (right-handed: X turns toward Y).
+    #[must_use]
+    pub fn rotation_z(angle: S) -> Self {
+        let (s, c) = angle.sin_cos();
+        let (o, z) = (S::ONE, S::ZERO);
+        Self {
+            m: [[c, -s, z], [s, c, z], [z, z, o]],
+        }
+    }
+    /// A diagonal scale.
+    #[must_use]
+    pub fn from_diagonal(d: Vec3<S>) -> Self {
+        let z = S::ZERO;
+        Self {
+            m: [[d.x, z, z], [z, d.y, z], [z, z, d.z]],
+        }
+    }
+    /// Converts every entry to another scalar type.
+    #[must_use]
+    pub fn cast<T: Scalar>(&self) -> Mat3<T> {
+        Mat3::from_rows(self.row(0).cast(), self.row(1).cast(), self.row(2).cast())
+    }
+}
+
+impl<S: Scalar> Mul for Mat3<S> {
+    type Output = Self;
+    fn mul(self, rhs: Self) -> Self {
+        self.mul_mat3(&rhs)
+    }
+}
+
+impl<S: Scalar> Affine3<S> {
+    /// The identity.
+    pub const IDENTITY: Self = Self {
+        matrix: Mat3::IDENTITY,
+        translation: Vec3::ZERO,
+    };
+
+    /// From a linear part and a translation.
+    #[must_use]
+    pub const fn new(matrix: Mat3<S>, translation: Vec3<S>) -> Self {
+        Self {
+            matrix,
+            translation,
+        }
+    }
+    /// A pure translation.
+    #[must_use]
+    pub fn from_translation(t: Vec3<S>) -> Self {
+        Self::new(Mat3::IDENTITY, t)
+    }
+    /// A pure linear map.
+    #[must_use]
+    pub fn from_mat3(m: Mat3<S>) -> Self {
+        Self::new(m, Vec3::ZERO)
+    }
+    /// Transforms a point (w = 1): `M·p + t`.
+    #[must_use]
+    pub fn transform_point3(&self, p: Vec3<S>) -> Vec3<S> {
+        self.matrix.mul_vec3(p) + self.translation
+    }
+    /// Transforms a direction (w = 0): `M·v`.
+    #[must_use]
+    pub fn transform_vector3(&self, v: Vec3<S>) -> Vec3<S> {
+        self.matrix.mul_vec3(v)
+    }
+    /// `self · rhs`: the composition that applies `rhs` first.
+    #[must_use]
+    pub fn mul_affine(&self, rhs: &Self) -> Self {
+        Self::new(
+            self.matrix.mul_mat3(&rhs.matrix),
+            self.matrix.mul_vec3(rhs.translation) + self.translation,
+        )
+    }
+    /// The inverse transform `p ↦ M⁻¹(p − t)`.
+    ///
+    /// # Errors
+    /// As [`Mat3::try_inverse`].
+    pub fn try_inverse(&self) -> Result<Self, SolveError> {
+        let inv = self.matrix.try_inverse()?;
+        Ok(Self::new(inv, -inv.mul_vec3(self.translation)))
+    }
+    /// As a 4×4 matrix with last row (0, 0, 0, 1).
+    #[must_use]
+    pub fn to_mat4(&self) -> Mat4<S> {
+        let m = &self.matrix.m;
+        let t = self.translation;
+        let (z, o) = (S::ZERO, S::ONE);
+        Mat4 {
+            m: [
+                [m[0][0], m[0][1], m[0][2], t.x],
+                [m[1][0], m[1][1], m[1][2], t.y],
+                [m[2][0], m[2][1], m[2][2], t.z],
+                [z, z, z, o],
+            ],
+        }
+    }
+    /// Converts every entry to another scalar type.
+    #[must_use]
+    pub fn cast<T: Scalar>(&self) -> Affine3<T> {
+        Affine3::new(self.matrix.cast(), self.translation.cast())
+    }
+}
+
+impl<S: Scalar> Mul for Affine3<S> {
+    type Output = Self;
+    /// `a * b` applies `b` first.
+    fn mul(self, rhs: Self) -> Self {
+        self.mul_affine(&rhs)
+    }
+}
+
+impl<S: Scalar> Mat4<S> {
+    /// The identity.
+    pub const IDENTITY: Self = Self {
+        m: [
+            [S::ONE, S::ZERO, S::ZERO, S::ZERO],
+            [S::ZERO, S::ONE, S::ZERO, S::ZERO],
+            [S::ZERO, S::ZERO, S::ONE, S::ZERO],
+            [S::ZERO, S::ZERO, S::ZERO, S::ONE],
+        ],
+    };
+
+    /// `M·v`.
+    #[must_use]
+    pub fn mul_vec4(&self, v: Vec4<S>) -> Vec4<S> {
+        let r = |i: usize| Vec4::from_array(self.m[i]).dot(v);
+        Vec4::new(r(0), r(1), r(2), r(3))
+    }
+    /// `self · rhs`.
+    #[must_use]
+    pub fn mul_mat4(&self, rhs: &Self) -> Self {
+        let mut out = Self::IDENTITY;
+        for i in 0..4 {
+            for j in 0..4 {
+                let mut acc = S::ZERO;
+                for k in 0..4 {
+                    acc += self.m[i][k] * rhs.m[k][j];
+                }
+                out.m[i][j] = acc;
+            }
+        }
+        out
+    }
+    /// Transforms a point with w = 1 and returns x, y, z **without** the
+    /// divide (correct for affine matrices; see [`Self::project_point3`]).
+    #[must_use]
+    pub fn transform_point3(&self, p: Vec3<S>) -> Vec3<S> {
+        self.mul_vec4(p.extend(S::ONE)).truncate()
+    }
+    /// Transforms a direction with w = 0, without the divide.
+    #[must_use]
+    pub fn transform_vector3(&self, v: Vec3<S>) -> Vec3<S> {
+        self.mul_vec4(v.extend(S::ZERO)).truncate()
+    }
+    /// Transforms a point with w = 1 and divides by the resulting w.
+    ///
+    /// Returns `None` when w is zero or the result is not finite (a point
+    /// in the eye plane of a perspective matrix): callers clip first.
+    #[must_use]
+    pub fn project_point3(&self, p: Vec3<S>) -> Option<Vec3<S>> {
+        let h = self.mul_vec4(p.extend(S::ONE));
+        if h.w == S::ZERO {
+            return None;
+        }
+        let mut overflow = false;
+        let r = Vec3::new(
+            h.x.div_flag(h.w, &mut overflow),
+            h.y.div_flag(h.w, &mut overflow),
+            h.z.div_flag(h.w, &mut overflow),
+        );
+        (!overflow && r.is_finite()).then_some(r)
+    }
+    /// The inverse, by Gaussian elimination with partial pivoting.
+    ///
+    /// # Errors
+    /// Whatever the solver reports.
+    pub fn try_inverse(&self) -> Result<Self, SolveError> {
+        let s = solve::solve(&self.m, &Self::IDENTITY.m)?;
+        Ok(Self { m: s.x })
+    }
+}
+
+impl<S: Scalar> Mul for Mat4<S> {
+    type Output = Self;
+    fn mul(self, rhs: Self) -> Self {
+        self.mul_mat4(&rhs)
+    }
+}
+
+impl<S: Scalar> From<Affine3<S>> for Mat4<S> {
+    fn from(a: Affine3<S>) -> Self {
+        a.to_mat4()
+    }
+}

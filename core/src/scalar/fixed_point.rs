@@ -1,0 +1,534 @@
+//! Saturating fixed point: [`Fx<Frac>`], a 32-bit signed number with `Frac`
+//! fractional bits, stored as [`fixed::FixedI32<Frac>`].
+//!
+//! All arithmetic is done here on the raw bits with `i64` intermediates, so
+//! the rounding and overflow behaviour is ours, documented, and identical on
+//! every target (a Cortex-M0 computes the same bits as an x86 host):
+//! - `+ -` saturate;
+//! - `*` rounds to nearest (ties toward +∞) and saturates;
+//! - `/` rounds to nearest (ties away from zero) and saturates; division by
+//!   zero gives `MAX`, `MIN` or `0` by the sign of the dividend;
+//! - `sqrt` is an exact integer square root, rounded to nearest;
+//! - `sin`/`cos`/`atan2` are integer polynomials evaluated in Q2.30 (see
+//!   below); no float and no table is involved.
+//!
+//! `Frac` must be in `1..=30`; other values fail to compile when a method is
+//! used.
+//!
+//! # Trigonometry
+//!
+//! `sin_cos` reduces the angle to turns in Q0.32 (the wrap modulo one turn is
+//! then exact integer wrap-around), splits off the octant, and evaluates the
+//! Taylor polynomials of sin (to x⁹) and cos (to x¹⁰) on [0, π/4] in Q2.30,
+//! where their truncation error is below 2·10⁻⁹. `atan2` reduces to
+//! |w| ≤ tan(π/8) with atan(z) = π/4 + atan((z−1)/(z+1)) and evaluates the
+//! Taylor series to w¹⁵ (truncation below 2·10⁻⁸). Both are therefore exact
+//! to within one step of any format up to `Fx<U24>`; the measured errors for
+//! I16F16 are in the crate's tests and in the accuracy report.
+
+use super::Scalar;
+use core::cmp::Ordering;
+use core::fmt;
+use core::marker::PhantomData;
+use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
+use fixed::FixedI32;
+use fixed::types::extra::{LeEqU32, U8, U12, U16, U30};
+
+/// Saturating 32-bit fixed point with `Frac` fractional bits (1 ≤ `Frac` ≤ 30).
+///
+/// The value is `bits / 2^Frac`. See the [module docs](self) for the exact
+/// rounding and overflow rules; in short, nothing ever wraps.
+#[repr(transparent)]
+pub struct Fx<Frac> {
+    bits: i32,
+    _frac: PhantomData<fn() -> Frac>,
+}
+
+/// Q16.16: range ±32768, step 2⁻¹⁶ ≈ 1.5·10⁻⁵. The default fixed format.
+pub type I16F16 = Fx<U16>;
+/// Q20.12: range ±524288, step 2⁻¹² ≈ 2.4·10⁻⁴.
+pub type I20F12 = Fx<U12>;
+/// Q24.8: range ±8388608, step 2⁻⁸.
+pub type I24F8 = Fx<U8>;
+/// Q2.30: range ±2, step 2⁻³⁰ ≈ 9.3·10⁻¹⁰. Suited to rotation coefficients.
+pub type I2F30 = Fx<U30>;
+
+impl<Frac> Clone for Fx<Frac> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<Frac> Copy for Fx<Frac> {}
+impl<Frac> Default for Fx<Frac> {
+    fn default() -> Self {
+        Self::from_bits(0)
+    }
+}
+impl<Frac> PartialEq for Fx<Frac> {
+    fn eq(&self, other: &Self) -> bool {
+        self.bits == other.bits
+    }
+}
+impl<Frac> Eq for Fx<Frac> {}
+impl<Frac> PartialOrd for Fx<Frac> {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl<Frac> Ord for Fx<Frac> {
+    fn cmp(&self, other: &Self) -> Ordering {
+        self.bits.cmp(&other.bits)
+    }
+}
+impl<Frac> core::hash::Hash for Fx<Frac> {
+    fn hash<H: core::hash::Hasher>(&self, state: &mut H) {
+        self.bits.hash(state);
+    }
+}
+
+impl<Frac> Fx<Frac> {
+    /// The value with the given raw bits (`bits / 2^Frac`).
+    #[must_use]
+    pub const fn from_bits(bits: i32) -> Self {
+        Self {
+            bits,
+            _frac: PhantomData,
+        }
+    }
+    /// The raw bits.
+    #[must_use]
+    pub const fn to_bits(self) -> i32 {
+        self.bits
+    }
+}
+
+impl<Frac: LeEqU32> Fx<Frac> {
+    const FRAC: u32 = {
+        assert!(
+            Frac::U32 >= 1 && Frac::U32 <= 30,
+            "Fx<Frac> needs 1 <= Frac <= 30"
+        );
+        Frac::U32
+    };
+
+    /// Wraps a value of the `fixed` crate (same bits).
+    #[must_use]
+    pub fn from_fixed(v: FixedI32<Frac>) -> Self {
+        Self::from_bits(v.to_bits())
+    }
+    /// The same bits as a value of the `fixed` crate.
+    #[must_use]
+    pub fn to_fixed(self) -> FixedI32<Frac> {
+        FixedI32::from_bits(self.bits)
+    }
+
+    #[inline]
+    fn sat(v: i64) -> Self {
+        Self::from_bits(sat_i32(v))
+    }
+    #[inline]
+    fn fits(v: i64) -> Option<Self> {
+        if v >= i32::MIN as i64 && v <= i32::MAX as i64 {
+            Some(Self::from_bits(v as i32))
+        } else {
+            None
+        }
+    }
+    /// Rounded product of the raw bits, before the range check.
+    #[inline]
+    fn mul_wide(a: i32, b: i32) -> i64 {
+        let f = Self::FRAC;
+        ((a as i64) * (b as i64) + (1i64 << (f - 1))) >> f
+    }
+    /// Rounded quotient of the raw bits, before the range check; `b != 0`.
+    #[inline]
+    fn div_wide(a: i32, b: i32) -> i64 {
+        let n = (a as i64) << Self::FRAC;
+        let d = b as i64;
+        let q = n / d;
+        let r = n % d;
+        // Round half away from zero.
+        if 2 * r.unsigned_abs() >= d.unsigned_abs() {
+            if (n < 0) == (d < 0) { q + 1 } else { q - 1 }
+        } else {
+            q
+        }
+    }
+    #[inline]
+    fn from_q30(v: i64) -> Self {
+        let f = Self::FRAC;
+        if f == 30 {
+            Self::sat(v)
+        } else {
+            Self::sat((v + (1i64 << (29 - f))) >> (30 - f))
+        }
+    }
+}
+
+impl<Frac: LeEqU32 + 'static> fmt::Debug for Fx<Frac> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.to_f64())
+    }
+}
+impl<Frac: LeEqU32 + 'static> fmt::Display for Fx<Frac> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        fmt::Display::fmt(&self.to_f64(), f)
+    }
+}
+
+impl<Frac: LeEqU32> Add for Fx<Frac> {
+    type Output = Self;
+    #[inline]
+    fn add(self, rhs: Self) -> Self {
+        Self::from_bits(self.bits.saturating_add(rhs.bits))
+    }
+}
+impl<Frac: LeEqU32> Sub for Fx<Frac> {
+    type Output = Self;
+    #[inline]
+    fn sub(self, rhs: Self) -> Self {
+        Self::from_bits(self.bits.saturating_sub(rhs.bits))
+    }
+}
+impl<Frac: LeEqU32> Mul for Fx<Frac> {
+    type Output = Self;
+    #[inline]
+    fn mul(self, rhs: Self) -> Self {
+        Self::sat(Self::mul_wide(self.bits, rhs.bits))
+    }
+}
+impl<Frac: LeEqU32> Div for Fx<Frac> {
+    type Output = Self;
+    #[inline]
+    fn div(self, rhs: Self) -> Self {
+        match rhs.bits {
+            0 => Self::from_bits(match self.bits.cmp(&0) {
+                Ordering::Greater => i32::MAX,
+                Ordering::Less => i32::MIN,
+                Ordering::Equal => 0,
+            }),
+            b => Self::sat(Self::div_wide(self.bits, b)),
+        }
+    }
+}
+impl<Frac: LeEqU32> Neg for Fx<Frac> {
+    type Output = Self;
+    #[inline]
+    fn neg(self) -> Self {
+        Self::from_bits(self.bits.saturating_neg())
+    }
+}
+macro_rules! assign_ops {
+    ($($tr:ident $m:ident $op:tt),*) => {$(
+        impl<Frac: LeEqU32> $tr for Fx<Frac> {
+            #[inline]
+            fn $m(&mut self, rhs: Self) {
+                *self = *self $op rhs;
+            }
+        }
+    )*};
+}
+assign_ops!(AddAssign add_assign +, SubAssign sub_assign -, MulAssign mul_assign *, DivAssign div_assign /);
+
+impl<Frac: LeEqU32> From<FixedI32<Frac>> for Fx<Frac> {
+    fn from(v: FixedI32<Frac>) -> Self {
+        Self::from_fixed(v)
+    }
+}
+
+// Constants in Q2.30 (and Q0.32 for the turn conversion), from exact decimal
+// expansions rounded to nearest.
+const Q30_ONE: i64 = 1 << 30;
+const PI_Q30: i64 = 3_373_259_426;
+const PI_2_Q30: i64 = 1_686_629_713;
+const PI_4_Q30: i64 = 843_314_857;
+const TAN_PI_8_Q30: i64 = 444_758_426;
+/// round(2³² / 2π): radians → turns in Q0.32.
+const INV_TAU_Q32: i64 = 683_565_276;
+/// round(π · 2⁶¹): π for every `Frac` by one rounded shift.
+const PI_Q61: i64 = 7_244_019_458_077_122_842;
+
+/// Saturates an `i64` into `i32`, usable in constants.
+const fn sat_i32(v: i64) -> i32 {
+    if v > i32::MAX as i64 {
+        i32::MAX
+    } else if v < i32::MIN as i64 {
+        i32::MIN
+    } else {
+        v as i32
+    }
+}
+
+#[inline]
+fn q30_mul(a: i64, b: i64) -> i64 {
+    (a * b + (1 << 29)) >> 30
+}
+
+/// sin(x) and cos(x) for 0 ≤ x ≤ π/4, in Q2.30 (Taylor to x⁹ and x¹⁰).
+fn sin_cos_octant_q30(x: i64) -> (i64, i64) {
+    let x2 = q30_mul(x, x);
+    // 1/3!, 1/5!, 1/7!, 1/9! and 1/2!, 1/4!, ..., 1/10! in Q2.30.
+    let mut s = 2_959; // 1/9!
+    s = 213_044 - q30_mul(x2, s); // 1/7!
+    s = 8_947_849 - q30_mul(x2, s); // 1/5!
+    s = 178_956_971 - q30_mul(x2, s); // 1/3!
+    s = Q30_ONE - q30_mul(x2, s);
+    let sin = q30_mul(x, s);
+    let mut c = 296; // 1/10!
+    c = 26_631 - q30_mul(x2, c); // 1/8!
+    c = 1_491_308 - q30_mul(x2, c); // 1/6!
+    c = 44_739_243 - q30_mul(x2, c); // 1/4!
+    c = 536_870_912 - q30_mul(x2, c); // 1/2!
+    let cos = Q30_ONE - q30_mul(x2, c);
+    (sin, cos)
+}
+
+/// atan(w) for |w| ≤ tan(π/8), in Q2.30 (Taylor to w¹⁵).
+fn atan_small_q30(w: i64) -> i64 {
+    let w2 = q30_mul(w, w);
+    // 1/15, 1/13, ..., 1/3 in Q2.30, alternating.
+    let mut p = 71_582_788;
+    p = 82_595_525 - q30_mul(w2, p);
+    p = 97_612_893 - q30_mul(w2, p);
+    p = 119_304_647 - q30_mul(w2, p);
+    p = 153_391_689 - q30_mul(w2, p);
+    p = 214_748_365 - q30_mul(w2, p);
+    p = 357_913_941 - q30_mul(w2, p);
+    p = Q30_ONE - q30_mul(w2, p);
+    q30_mul(w, p)
+}
+
+fn isqrt_u64(n: u64) -> u64 {
+    // Digit-by-digit (base 4) square root, floor.
+    let mut x = n;
+    let mut r = 0u64;
+    let mut one = 1u64 << 62;
+    while one > x {
+        one >>= 2;
+    }
+    while one != 0 {
+        if x >= r + one {
+            x -= r + one;
+            r = (r >> 1) + one;
+        } else {
+            r >>= 1;
+        }
+        one >>= 2;
+    }
+    // Round to nearest: n - r² > r  ⇔  n > (r + ½)².
+    if x > r { r + 1 } else { r }
+}
+
+impl<Frac: LeEqU32 + 'static> Scalar for Fx<Frac> {
+    const ZERO: Self = Self::from_bits(0);
+    const ONE: Self = Self::from_bits(1 << Self::FRAC);
+    const TWO: Self = Self::from_bits(sat_i32((2i64) << Self::FRAC));
+    const HALF: Self = Self::from_bits(1 << (Self::FRAC - 1));
+    const PI: Self = Self::from_bits(sat_i32(
+        (PI_Q61 + (1i64 << (60 - Self::FRAC))) >> (61 - Self::FRAC),
+    ));
+    const EPSILON: Self = Self::from_bits(1);
+    const MAX: Self = Self::from_bits(i32::MAX);
+    const MIN: Self = Self::from_bits(i32::MIN);
+    const IS_FLOAT: bool = false;
+    const NAME: &'static str = match Self::FRAC {
+        8 => "I24F8",
+        12 => "I20F12",
+        16 => "I16F16",
+        30 => "I2F30",
+        _ => "Fx",
+    };
+
+    fn from_f64(x: f64) -> Self {
+        if x.is_nan() {
+            return Self::ZERO;
+        }
+        let v = x * (1u64 << Self::FRAC) as f64;
+        // Round half away from zero without libm: `as` truncates and saturates.
+        let r = if v >= 0.0 { v + 0.5 } else { v - 0.5 };
+        Self::from_bits(r as i32)
+    }
+    fn from_i32(x: i32) -> Self {
+        Self::sat((x as i64) << Self::FRAC)
+    }
+    fn try_from_f64(x: f64) -> Option<Self> {
+        let v = x * (1u64 << Self::FRAC) as f64;
+        if v.is_finite() && v > i32::MIN as f64 - 0.5 && v < i32::MAX as f64 + 0.5 {
+            Some(Self::from_f64(x))
+        } else {
+            None
+        }
+    }
+    fn to_f64(self) -> f64 {
+        self.bits as f64 / (1u64 << Self::FRAC) as f64
+    }
+    fn to_f32(self) -> f32 {
+        self.to_f64() as f32
+    }
+    fn is_finite(self) -> bool {
+        true
+    }
+    fn abs(self) -> Self {
+        Self::from_bits(self.bits.saturating_abs())
+    }
+    fn sqrt(self) -> Self {
+        if self.bits <= 0 {
+            return Self::ZERO;
+        }
+        let n = (self.bits as u64) << Self::FRAC;
+        // sqrt(2³¹ · 2³⁰) < 2³¹: always fits.
+        Self::from_bits(isqrt_u64(n) as i32)
+    }
+    fn sin_cos(self) -> (Self, Self) {
+        // Radians → turns in Q0.32; the `as u32` wrap is the exact reduction
+        // modulo one turn.
+        let turns = ((self.bits as i64 * INV_TAU_Q32) >> Self::FRAC) as u32;
+        let octant = turns >> 29;
+        let mut r = (turns & ((1 << 29) - 1)) as i64;
+        if octant & 1 == 1 {
+            r = (1 << 29) - r;
+        }
+        let x = (r * PI_4_Q30 + (1 << 28)) >> 29;
+        let (s, c) = sin_cos_octant_q30(x);
+        let (s, c) = if octant & 1 == 1 { (c, s) } else { (s, c) };
+        let (s, c) = match octant >> 1 {
+            0 => (s, c),
+            1 => (c, -s),
+            2 => (-s, -c),
+            _ => (-c, s),
+        };
+        (Self::from_q30(s), Self::from_q30(c))
+    }
+    fn atan2(self, x: Self) -> Self {
+        let (y, x) = (self.bits as i64, x.bits as i64);
+        if x == 0 && y == 0 {
+            return Self::ZERO;
+        }
+        let (ax, ay) = (x.abs(), y.abs());
+        let (num, den, swapped) = if ay > ax {
+            (ax, ay, true)
+        } else {
+            (ay, ax, false)
+        };
+        let z = (num << 30) / den; // Q2.30 in [0, 1]
+        let mut a = if z > TAN_PI_8_Q30 {
+            PI_4_Q30 + atan_small_q30(((z - Q30_ONE) << 30) / (z + Q30_ONE))
+        } else {
+            atan_small_q30(z)
+        };
+        if swapped {
+            a = PI_2_Q30 - a;
+        }
+        if x < 0 {
+            a = PI_Q30 - a;
+        }
+        if y < 0 {
+            a = -a;
+        }
+        Self::from_q30(a)
+    }
+    fn checked_add(self, rhs: Self) -> Option<Self> {
+        self.bits.checked_add(rhs.bits).map(Self::from_bits)
+    }
+    fn checked_sub(self, rhs: Self) -> Option<Self> {
+        self.bits.checked_sub(rhs.bits).map(Self::from_bits)
+    }
+    fn checked_mul(self, rhs: Self) -> Option<Self> {
+        Self::fits(Self::mul_wide(self.bits, rhs.bits))
+    }
+    fn checked_div(self, rhs: Self) -> Option<Self> {
+        if rhs.bits == 0 {
+            None
+        } else {
+            Self::fits(Self::div_wide(self.bits, rhs.bits))
+        }
+    }
+    fn sub_mul_flag(self, a: Self, b: Self, overflow: &mut bool) -> Self {
+        let f = Self::FRAC;
+        // |self·2ᶠ| ≤ 2⁶¹ and |a·b| ≤ 2⁶², so the i64 never overflows.
+        let exact = ((self.bits as i64) << f) - (a.bits as i64) * (b.bits as i64);
+        let v = (exact + (1i64 << (f - 1))) >> f;
+        match Self::fits(v) {
+            Some(r) => r,
+            None => {
+                *overflow = true;
+                Self::sat(v)
+            }
+        }
+    }
+    fn div_flag(self, d: Self, overflow: &mut bool) -> Self {
+        match self.checked_div(d) {
+            Some(r) => r,
+            None => {
+                *overflow = true;
+                self / d
+            }
+        }
+    }
+    fn to_subpixel(self, frac_bits: u32) -> Option<i32> {
+        let f = Self::FRAC as i32;
+        let s = frac_bits.min(24) as i32 - f;
+        let v = self.bits as i64;
+        let r = if s >= 0 {
+            v << s
+        } else {
+            let sh = (-s) as u32;
+            // Round half away from zero, as the float paths do.
+            let half = 1i64 << (sh - 1);
+            if v >= 0 {
+                (v + half) >> sh
+            } else {
+                -((-v + half) >> sh)
+            }
+        };
+        i32::try_from(r).ok()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn q30_conversion_rounds_to_nearest() {
+        assert_eq!(I16F16::from_q30(5 << 28), I16F16::from_f64(1.25));
+        // 2⁻¹⁷ in Q30 is half a step of Q16: rounds up (ties toward +∞).
+        assert_eq!(I16F16::from_q30(1 << 13).to_bits(), 1);
+        assert_eq!(I16F16::from_q30((1 << 13) - 1).to_bits(), 0);
+    }
+
+    #[test]
+    fn isqrt_is_rounded_floor_exact() {
+        for n in [
+            0u64,
+            1,
+            2,
+            3,
+            4,
+            15,
+            16,
+            17,
+            1 << 40,
+            (1 << 61) + 12345,
+            u64::MAX >> 2,
+        ] {
+            let r = isqrt_u64(n) as u128;
+            let n = n as u128;
+            // r is the nearest integer to √n: (r-½)² ≤ n < (r+½)², i.e.
+            // 4n ≥ (2r-1)² and 4n < (2r+1)².
+            assert!(4 * n < (2 * r + 1) * (2 * r + 1), "n={n} r={r}");
+            if r > 0 {
+                assert!(4 * n >= (2 * r - 1) * (2 * r - 1), "n={n} r={r}");
+            }
+        }
+    }
+
+    #[test]
+    fn pi_and_names() {
+        assert_eq!(I16F16::PI.to_bits(), 205_887); // round(π·65536)
+        // π and 2 do not fit Q2.30's range (±2): they saturate.
+        assert_eq!(I2F30::PI, I2F30::MAX);
+        assert_eq!(I2F30::TWO, I2F30::MAX);
+        assert_eq!(I16F16::NAME, "I16F16");
+    }
+}

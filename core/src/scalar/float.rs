@@ -1,0 +1,127 @@
+//! [`Scalar`] for `f32` and `f64`: IEEE 754 arithmetic, `libm` for the rest.
+
+use super::Scalar;
+use super::float_math as m;
+
+macro_rules! impl_float {
+    ($t:ty, $name:literal, $sqrt:path, $sincos:path, $atan2:path, $asin:path, $round:path) => {
+        impl Scalar for $t {
+            const ZERO: Self = 0.0;
+            const ONE: Self = 1.0;
+            const TWO: Self = 2.0;
+            const HALF: Self = 0.5;
+            const PI: Self = core::f64::consts::PI as $t;
+            const EPSILON: Self = <$t>::EPSILON;
+            const MAX: Self = <$t>::MAX;
+            const MIN: Self = <$t>::MIN;
+            const IS_FLOAT: bool = true;
+            const NAME: &'static str = $name;
+
+            #[inline]
+            fn from_f64(x: f64) -> Self {
+                if x.is_nan() {
+                    0.0
+                } else {
+                    // `as` rounds to nearest and gives ±∞ beyond the range;
+                    // saturate those to the finite extremes.
+                    (x as $t).clamp(<$t>::MIN, <$t>::MAX)
+                }
+            }
+            #[inline]
+            fn from_f32(x: f32) -> Self {
+                Self::from_f64(x as f64)
+            }
+            #[inline]
+            fn from_i32(x: i32) -> Self {
+                x as $t
+            }
+            #[inline]
+            fn try_from_f64(x: f64) -> Option<Self> {
+                let v = x as $t;
+                if v.is_finite() { Some(v) } else { None }
+            }
+            #[inline]
+            fn to_f64(self) -> f64 {
+                self as f64
+            }
+            #[inline]
+            fn to_f32(self) -> f32 {
+                self as f32
+            }
+            #[inline]
+            fn is_finite(self) -> bool {
+                <$t>::is_finite(self)
+            }
+            #[inline]
+            fn abs(self) -> Self {
+                <$t>::abs(self)
+            }
+            #[inline]
+            fn sqrt(self) -> Self {
+                $sqrt(self)
+            }
+            #[inline]
+            fn sin_cos(self) -> (Self, Self) {
+                $sincos(self)
+            }
+            #[inline]
+            fn atan2(self, x: Self) -> Self {
+                $atan2(self, x)
+            }
+            #[inline]
+            fn asin(self) -> Self {
+                $asin(self.clamp_to(-1.0, 1.0))
+            }
+            #[inline]
+            fn checked_add(self, rhs: Self) -> Option<Self> {
+                finite(self + rhs)
+            }
+            #[inline]
+            fn checked_sub(self, rhs: Self) -> Option<Self> {
+                finite(self - rhs)
+            }
+            #[inline]
+            fn checked_mul(self, rhs: Self) -> Option<Self> {
+                finite(self * rhs)
+            }
+            #[inline]
+            fn checked_div(self, rhs: Self) -> Option<Self> {
+                if rhs == 0.0 { None } else { finite(self / rhs) }
+            }
+            #[inline]
+            fn sub_mul_flag(self, a: Self, b: Self, _overflow: &mut bool) -> Self {
+                self - a * b
+            }
+            #[inline]
+            fn div_flag(self, d: Self, _overflow: &mut bool) -> Self {
+                self / d
+            }
+            #[inline]
+            fn to_subpixel(self, frac_bits: u32) -> Option<i32> {
+                let v = $round(self * (1u32 << frac_bits.min(24)) as $t);
+                // Strict bounds: 2^31 is exactly representable, i32::MAX is not.
+                if v.is_finite() && v >= -2_147_483_648.0 && v < 2_147_483_648.0 {
+                    Some(v as i32)
+                } else {
+                    None
+                }
+            }
+        }
+    };
+}
+
+#[inline]
+fn finite<T: Scalar>(v: T) -> Option<T> {
+    if v.is_finite() { Some(v) } else { None }
+}
+
+impl_float!(
+    f32,
+    "f32",
+    m::sqrtf,
+    m::sincosf,
+    m::atan2f,
+    m::asinf,
+    m::roundf
+);
+impl_float!(f64, "f64", m::sqrt, m::sincos, m::atan2, m::asin, m::round);

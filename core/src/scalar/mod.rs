@@ -1,0 +1,183 @@
+//! The one numeric abstraction every kernel in sightline is written against.
+//!
+//! [`Scalar`] is implemented for
+//! - [`f64`]: the reference representation used by tests and reports;
+//! - [`f32`]: hardware float on FPU cores, soft float elsewhere; transcendental
+//!   functions go through [`libm`] (see the private `float_math` module, the one
+//!   place where the no_std build calls into it);
+//! - [`Fx<Frac>`](Fx): saturating fixed point over [`fixed::FixedI32<Frac>`]
+//!   storage, with [`I16F16`] as the default format.
+//!
+//! # Overflow policy
+//!
+//! - The operators `+ - * /` on [`Fx`] **saturate**: a result beyond the
+//!   representable range becomes `MAX` or `MIN`, never a wrapped value.
+//!   Division by zero saturates to `MAX`/`MIN` by the sign of the dividend
+//!   (`0 / 0` is `0`).
+//! - The `checked_*` methods are the **reporting path**: they return `None`
+//!   where the operators would have saturated (fixed point) or produced a
+//!   non-finite value (float). The solver uses them and turns `None` into
+//!   [`SolveError::Overflow`](crate::solve::SolveError::Overflow).
+//! - Conversions from float ([`Scalar::from_f64`], [`Scalar::from_f32`])
+//!   round to nearest and saturate; NaN converts to zero. Use
+//!   [`Scalar::try_from_f64`] to reject out-of-range or NaN input instead.
+//! - Floats follow IEEE 754: overflow gives ±∞, which kernels detect with
+//!   [`Scalar::is_finite`].
+
+mod fixed_point;
+mod float;
+mod float_math;
+
+pub use fixed_point::{Fx, I2F30, I16F16, I20F12, I24F8};
+
+use core::fmt::Debug;
+use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
+
+/// A real-number representation: `f32`, `f64` or saturating fixed point.
+///
+/// All numeric kernels in sightline (vectors, matrices, the solver, cameras)
+/// are generic over this trait and written once.
+pub trait Scalar:
+    Copy
+    + Default
+    + PartialEq
+    + PartialOrd
+    + Debug
+    + Send
+    + Sync
+    + 'static
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + AddAssign
+    + SubAssign
+    + MulAssign
+    + DivAssign
+{
+    /// 0.
+    const ZERO: Self;
+    /// 1.
+    const ONE: Self;
+    /// 2.
+    const TWO: Self;
+    /// 0.5.
+    const HALF: Self;
+    /// π, rounded to the representation.
+    const PI: Self;
+    /// The resolution of the type near 1: machine epsilon (2⁻²³ for `f32`,
+    /// 2⁻⁵² for `f64`) or one step of the fixed-point grid (2⁻ᶠʳᵃᶜ).
+    /// Tolerances in tests and thresholds in the solver are multiples of it.
+    const EPSILON: Self;
+    /// The largest finite value.
+    const MAX: Self;
+    /// The most negative finite value.
+    const MIN: Self;
+    /// Whether the representation is IEEE floating point.
+    const IS_FLOAT: bool;
+    /// A short name for reports and test messages, e.g. `"f32"` or `"I16F16"`.
+    const NAME: &'static str;
+
+    /// Converts from `f64`, rounding to nearest. Saturates out-of-range
+    /// values; NaN becomes zero.
+    fn from_f64(x: f64) -> Self;
+    /// Converts from `f32`, with the same rules as [`Scalar::from_f64`].
+    #[must_use]
+    fn from_f32(x: f32) -> Self {
+        Self::from_f64(x as f64)
+    }
+    /// Converts an integer, saturating where it does not fit.
+    fn from_i32(x: i32) -> Self;
+    /// Converts from `f64`; `None` for NaN or a value out of range
+    /// (for floats: one that would become infinite).
+    fn try_from_f64(x: f64) -> Option<Self>;
+    /// Converts to `f64` (exact for every implemented type).
+    fn to_f64(self) -> f64;
+    /// Converts to `f32` (rounded to nearest).
+    fn to_f32(self) -> f32;
+
+    /// `false` for NaN and ±∞. Always `true` for fixed point.
+    fn is_finite(self) -> bool;
+    /// Absolute value (saturating for fixed point: `|MIN|` is `MAX`).
+    fn abs(self) -> Self;
+    /// Square root. For negative input: NaN for floats, zero for fixed point.
+    fn sqrt(self) -> Self;
+    /// Sine of an angle in radians.
+    fn sin(self) -> Self {
+        self.sin_cos().0
+    }
+    /// Cosine of an angle in radians.
+    fn cos(self) -> Self {
+        self.sin_cos().1
+    }
+    /// Sine and cosine together (one range reduction).
+    fn sin_cos(self) -> (Self, Self);
+    /// Four-quadrant arctangent of `self / x`, in (−π, π]; `atan2(0, 0) = 0`.
+    fn atan2(self, x: Self) -> Self;
+    /// Arcsine; the argument is clamped to [−1, 1] first, so the result is
+    /// always defined for finite input.
+    #[must_use]
+    fn asin(self) -> Self {
+        let s = self.clamp_to(-Self::ONE, Self::ONE);
+        let c = (Self::ONE - s * s).sqrt();
+        s.atan2(c)
+    }
+
+    /// `Some(self + rhs)` unless the sum overflows or is not finite.
+    fn checked_add(self, rhs: Self) -> Option<Self>;
+    /// `Some(self - rhs)` unless the difference overflows or is not finite.
+    fn checked_sub(self, rhs: Self) -> Option<Self>;
+    /// `Some(self * rhs)` unless the product overflows or is not finite.
+    fn checked_mul(self, rhs: Self) -> Option<Self>;
+    /// `Some(self / rhs)` unless `rhs` is zero or the quotient overflows or
+    /// is not finite.
+    fn checked_div(self, rhs: Self) -> Option<Self>;
+
+    /// `self − a·b` for elimination kernels, reporting overflow through a
+    /// flag instead of branching per operation.
+    ///
+    /// Fixed point computes the exact value in `i64` with a single rounding,
+    /// saturates, and sets `*overflow` when it did not fit. Floats compute
+    /// `self - a * b` (no fused multiply-add, for bit-reproducibility
+    /// across targets) and leave the flag alone: a non-finite result is
+    /// detected by the caller's final [`Scalar::is_finite`] check.
+    fn sub_mul_flag(self, a: Self, b: Self, overflow: &mut bool) -> Self;
+    /// `self / d` with the same reporting as [`Scalar::sub_mul_flag`].
+    fn div_flag(self, d: Self, overflow: &mut bool) -> Self;
+
+    /// The smaller of two values (`other` if they are unordered).
+    #[must_use]
+    fn min_of(self, other: Self) -> Self {
+        if self < other { self } else { other }
+    }
+    /// The larger of two values (`other` if they are unordered).
+    #[must_use]
+    fn max_of(self, other: Self) -> Self {
+        if self > other { self } else { other }
+    }
+    /// Clamps into `[lo, hi]`; NaN becomes `lo`.
+    #[must_use]
+    fn clamp_to(self, lo: Self, hi: Self) -> Self {
+        if self > hi {
+            hi
+        } else if self >= lo {
+            self
+        } else {
+            lo
+        }
+    }
+    /// `1 / self` (saturating for fixed point).
+    #[must_use]
+    fn recip(self) -> Self {
+        Self::ONE / self
+    }
+    /// Converts to a signed fixed-point integer with `frac_bits` (≤ 24)
+    /// fractional bits, rounding to nearest (ties away from zero). `None` for
+    /// NaN, ±∞ or a value outside `i32`. Used to snap projected vertices to
+    /// the sub-pixel grid.
+    fn to_subpixel(self, frac_bits: u32) -> Option<i32>;
+}
+
+#[cfg(test)]
+mod tests;

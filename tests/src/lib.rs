@@ -1,0 +1,1 @@
+//! Shared helpers for sightline's cross-crate tests and benchmarks.

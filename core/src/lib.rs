@@ -51,8 +51,14 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs, missing_debug_implementations)]
 
+#[cfg(test)]
+extern crate std;
+
 pub mod camera;
 pub mod math;
 pub mod scalar;
 pub mod solve;
 pub mod transform;
+
+#[cfg(test)]
+mod test_util;

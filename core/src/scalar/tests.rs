@@ -1,1 +1,202 @@
+//! The scalar suite, written once and instantiated per representation with
+//! tolerances in units of each type's `EPSILON`.
 
+use super::*;
+use crate::test_util::Rng;
+
+/// One step of the representation near `x` (an ulp for floats, EPSILON for
+/// fixed point), in f64.
+fn ulp_at<T: Scalar>(x: f64) -> f64 {
+    if T::IS_FLOAT {
+        T::EPSILON.to_f64() * x.abs().max(f64::MIN_POSITIVE)
+    } else {
+        T::EPSILON.to_f64()
+    }
+}
+
+fn arithmetic_is_exact_on_representable_values<T: Scalar>() {
+    let v = |x: f64| T::from_f64(x);
+    assert_eq!(v(1.5) + v(2.25), v(3.75));
+    assert_eq!(v(1.5) - v(2.25), v(-0.75));
+    assert_eq!(v(1.5) * v(-2.25), v(-3.375));
+    assert_eq!(v(-3.375) / v(1.5), v(-2.25));
+    assert_eq!(T::ONE + T::ONE, T::TWO);
+    assert_eq!(T::TWO * T::HALF, T::ONE);
+    assert_eq!(T::from_i32(-7).to_f64(), -7.0);
+    assert!((T::PI.to_f64() - core::f64::consts::PI).abs() <= ulp_at::<T>(3.2));
+}
+
+fn sin_cos_match_f64<T: Scalar>(max_ulps: f64) {
+    let mut rng = Rng::new(1);
+    let mut worst: f64 = 0.0;
+    for i in 0..20_000 {
+        // Dense near the octant boundaries, uniform elsewhere.
+        let a = if i < 64 {
+            (i as f64 - 32.0) * core::f64::consts::FRAC_PI_4
+        } else {
+            rng.range(-40.0, 40.0)
+        };
+        let t = T::from_f64(a);
+        // Compare against the angle the representation actually holds.
+        let exact = t.to_f64();
+        let (s, c) = t.sin_cos();
+        assert_eq!(s, t.sin());
+        assert_eq!(c, t.cos());
+        let es = (s.to_f64() - exact.sin()).abs() / ulp_at::<T>(exact.sin().abs().max(1e-3));
+        let ec = (c.to_f64() - exact.cos()).abs() / ulp_at::<T>(exact.cos().abs().max(1e-3));
+        worst = worst.max(es).max(ec);
+    }
+    assert!(worst <= max_ulps, "{}: sin/cos error {worst} steps", T::NAME);
+}
+
+fn atan2_asin_match_f64<T: Scalar>(max_ulps: f64) {
+    let mut rng = Rng::new(2);
+    let mut worst: f64 = 0.0;
+    for _ in 0..20_000 {
+        let y = T::from_f64(rng.range(-100.0, 100.0));
+        let x = T::from_f64(rng.range(-100.0, 100.0));
+        let exact = y.to_f64().atan2(x.to_f64());
+        let e = (y.atan2(x).to_f64() - exact).abs();
+        worst = worst.max(e / ulp_at::<T>(exact.abs().max(1e-3)));
+        let s = T::from_f64(rng.range(-1.0, 1.0));
+        let exact = s.to_f64().asin();
+        let e = (s.asin().to_f64() - exact).abs();
+        // Fixed point computes asin through sqrt(1 − s²), whose rounding is
+        // amplified by asin's slope 1/√(1 − s²) near ±1.
+        let slope = if T::IS_FLOAT {
+            1.0
+        } else {
+            1.0 / (1.0 - s.to_f64() * s.to_f64()).max(1e-12).sqrt()
+        };
+        worst = worst.max(e / (ulp_at::<T>(exact.abs().max(1e-3)) * slope));
+    }
+    assert!(worst <= max_ulps, "{}: atan2/asin error {worst} steps", T::NAME);
+    assert_eq!(T::ZERO.atan2(T::ZERO), T::ZERO);
+    let pi = T::ZERO.atan2(-T::ONE).to_f64();
+    assert!((pi - core::f64::consts::PI).abs() <= max_ulps * ulp_at::<T>(3.2));
+}
+
+fn sqrt_is_correctly_rounded<T: Scalar>() {
+    let mut rng = Rng::new(3);
+    for _ in 0..20_000 {
+        let x = T::from_f64(rng.range(0.0, 30_000.0) * rng.unit().powi(4));
+        let r = x.sqrt().to_f64();
+        let exact = x.to_f64().sqrt();
+        // Within half a step of the exact root (plus f64 noise).
+        assert!(
+            (r - exact).abs() <= 0.5 * ulp_at::<T>(exact) * (1.0 + 1e-9) + 1e-300,
+            "{}: sqrt({x:?}) = {r}, exact {exact}",
+            T::NAME
+        );
+    }
+    assert_eq!(T::ZERO.sqrt(), T::ZERO);
+}
+
+fn checked_ops_report_overflow<T: Scalar>() {
+    assert_eq!(T::MAX.checked_add(T::MAX), None);
+    assert_eq!(T::MIN.checked_sub(T::MAX), None);
+    assert_eq!(T::MAX.checked_mul(T::TWO), None);
+    assert_eq!(T::ONE.checked_div(T::ZERO), None);
+    assert_eq!(T::ONE.checked_add(T::ONE), Some(T::TWO));
+    assert_eq!(T::ONE.checked_div(T::TWO), Some(T::HALF));
+    assert_eq!(T::from_f64(f64::NAN), T::ZERO);
+    assert_eq!(T::try_from_f64(f64::NAN), None);
+    assert_eq!(T::try_from_f64(f64::INFINITY), None);
+    // A value beyond the range (for f64 only ∞ is).
+    let big = if T::MAX.to_f64() < 1e300 { 1e300 } else { f64::INFINITY };
+    assert_eq!(T::try_from_f64(big), None);
+    assert_eq!(T::from_f64(big), T::MAX);
+    assert_eq!(T::from_f64(-big), T::MIN);
+    let mut flag = false;
+    let _ = T::ONE.sub_mul_flag(T::ONE, T::ONE, &mut flag);
+    assert!(!flag);
+}
+
+fn to_subpixel_rounds_to_nearest<T: Scalar>() {
+    let v = |x: f64| T::from_f64(x);
+    assert_eq!(v(1.5).to_subpixel(4), Some(24));
+    assert_eq!(v(-1.5).to_subpixel(4), Some(-24));
+    assert_eq!(v(10.03125).to_subpixel(4), Some(161)); // 160.5 rounds away
+    assert_eq!(v(-10.03125).to_subpixel(4), Some(-161));
+    assert_eq!(v(0.0).to_subpixel(4), Some(0));
+}
+
+macro_rules! scalar_suite {
+    ($name:ident, $t:ty, trig_ulps = $trig:expr, atan_ulps = $atan:expr) => {
+        mod $name {
+            use super::*;
+            #[test]
+            fn arithmetic() {
+                arithmetic_is_exact_on_representable_values::<$t>();
+            }
+            #[test]
+            fn sin_cos() {
+                sin_cos_match_f64::<$t>($trig);
+            }
+            #[test]
+            fn atan2_asin() {
+                atan2_asin_match_f64::<$t>($atan);
+            }
+            #[test]
+            fn sqrt() {
+                sqrt_is_correctly_rounded::<$t>();
+            }
+            #[test]
+            fn checked() {
+                checked_ops_report_overflow::<$t>();
+            }
+            #[test]
+            fn subpixel() {
+                to_subpixel_rounds_to_nearest::<$t>();
+            }
+        }
+    };
+}
+
+// Float trig is libm (≤ 1 ulp of the result, which is ≤ EPSILON near 1).
+// Fixed-point trig is the Q2.30 polynomial: its error is the final rounding
+// to the format (½ step) plus the polynomial's (< 2·10⁻⁸, far below a
+// step), so one step bounds it.
+scalar_suite!(f64_suite, f64, trig_ulps = 1.0, atan_ulps = 2.0);
+scalar_suite!(f32_suite, f32, trig_ulps = 1.0, atan_ulps = 2.0);
+scalar_suite!(i16f16_suite, I16F16, trig_ulps = 1.0, atan_ulps = 1.0);
+scalar_suite!(i20f12_suite, I20F12, trig_ulps = 1.0, atan_ulps = 1.0);
+
+#[test]
+fn fixed_operators_saturate_instead_of_wrapping() {
+    type T = I16F16;
+    assert_eq!(T::MAX + T::ONE, T::MAX);
+    assert_eq!(T::MIN - T::ONE, T::MIN);
+    assert_eq!(T::MAX * T::TWO, T::MAX);
+    assert_eq!(T::MAX * -T::TWO, T::MIN);
+    assert_eq!(-T::MIN, T::MAX);
+    assert_eq!(T::MIN.abs(), T::MAX);
+    assert_eq!(T::ONE / T::ZERO, T::MAX);
+    assert_eq!(-T::ONE / T::ZERO, T::MIN);
+    assert_eq!(T::ZERO / T::ZERO, T::ZERO);
+    assert_eq!(T::from_i32(40_000), T::MAX);
+    assert_eq!((-T::ONE).sqrt(), T::ZERO);
+    let mut flag = false;
+    assert_eq!(T::from_i32(300).sub_mul_flag(T::from_i32(300), T::from_i32(300), &mut flag), T::MIN);
+    assert!(flag);
+}
+
+#[test]
+fn fixed_mul_div_round_to_nearest() {
+    type T = I16F16;
+    // 3 steps × 0.5 = 1.5 steps → 2 (ties toward +∞).
+    assert_eq!((T::from_bits(3) * T::HALF).to_bits(), 2);
+    assert_eq!((T::from_bits(-3) * T::HALF).to_bits(), -1);
+    // 1/3 = 21845.33 steps → 21845; 2/3 = 43690.67 → 43691.
+    assert_eq!((T::ONE / T::from_i32(3)).to_bits(), 21_845);
+    assert_eq!((T::TWO / T::from_i32(3)).to_bits(), 43_691);
+    assert_eq!((-T::TWO / T::from_i32(3)).to_bits(), -43_691);
+}
+
+#[test]
+fn fixed_interop_with_the_fixed_crate() {
+    let f = fixed::types::I16F16::from_num(2.5);
+    let x = I16F16::from_fixed(f);
+    assert_eq!(x.to_f64(), 2.5);
+    assert_eq!(x.to_fixed(), f);
+}

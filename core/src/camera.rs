@@ -331,7 +331,7 @@ impl<S: Scalar> Projection<S> {
                 p.z,
             ),
             ProjectionKind::Perspective { focus } => {
-                if !(p.z > S::ZERO) {
+                if p.z <= S::ZERO || !p.z.is_finite() {
                     return None;
                 }
                 let inv_z = S::ONE.div_flag(p.z, &mut overflow);

@@ -33,7 +33,11 @@ fn normalize_is_robust<T: Scalar>(small: f64, large: f64) {
     for s in [small, 1.0, large] {
         let v = v3::<T>(3.0 * s, -4.0 * s, 0.0);
         let n = v.try_normalize().expect("non-zero vector normalizes");
-        assert!(close(n, v3(0.6, -0.8, 0.0), tol), "{}: {n:?} at scale {s}", T::NAME);
+        assert!(
+            close(n, v3(0.6, -0.8, 0.0), tol),
+            "{}: {n:?} at scale {s}",
+            T::NAME
+        );
         assert!((v.length().to_f64() - 5.0 * s).abs() <= 5.0 * s * tol + tol);
     }
     assert_eq!(Vec3::<T>::ZERO.try_normalize(), None);
@@ -45,7 +49,11 @@ fn rotations_are_orthonormal_and_right_handed<T: Scalar>(tol_steps: f64) {
     let mut rng = Rng::new(11);
     for _ in 0..200 {
         let a = T::from_f64(rng.range(-4.0, 4.0));
-        for r in [Mat3::rotation_x(a), Mat3::rotation_y(a), Mat3::rotation_z(a)] {
+        for r in [
+            Mat3::rotation_x(a),
+            Mat3::rotation_y(a),
+            Mat3::rotation_z(a),
+        ] {
             let rrt = r.mul_mat3(&r.transpose());
             for i in 0..3 {
                 assert!(close(rrt.row(i), Mat3::<T>::IDENTITY.row(i), tol));
@@ -72,14 +80,15 @@ fn affine_inverse_round_trips<T: Scalar>(tol: f64) {
             v3(rng.range(-10.0, 10.0), rng.range(-10.0, 10.0), 3.0),
         );
         let inv = a.try_inverse().expect("well-conditioned");
-        let p = v3::<T>(rng.range(-5.0, 5.0), rng.range(-5.0, 5.0), rng.range(-5.0, 5.0));
+        let p = v3::<T>(
+            rng.range(-5.0, 5.0),
+            rng.range(-5.0, 5.0),
+            rng.range(-5.0, 5.0),
+        );
         let back = inv.transform_point3(a.transform_point3(p));
         assert!(close(back, p, tol), "{}: {back:?} vs {p:?}", T::NAME);
         // A vector ignores the translation.
-        assert_eq!(
-            a.transform_vector3(p),
-            a.matrix.mul_vec3(p),
-        );
+        assert_eq!(a.transform_vector3(p), a.matrix.mul_vec3(p),);
         // The 4×4 form agrees with the affine form.
         let m4 = a.to_mat4();
         assert_eq!(m4.transform_point3(p), a.transform_point3(p));
@@ -130,13 +139,34 @@ macro_rules! math_suite {
 
 // Normalisation is scaled by the largest component, so it holds from the
 // smallest normal magnitudes to the largest finite ones.
-math_suite!(f64_suite, f64, small = 1e-300, large = 1e300, rot_steps = 8.0, inv_tol = 1e-12);
-math_suite!(f32_suite, f32, small = 1e-35, large = 1e35, rot_steps = 8.0, inv_tol = 1e-4);
+math_suite!(
+    f64_suite,
+    f64,
+    small = 1e-300,
+    large = 1e300,
+    rot_steps = 8.0,
+    inv_tol = 1e-12
+);
+math_suite!(
+    f32_suite,
+    f32,
+    small = 1e-35,
+    large = 1e35,
+    rot_steps = 8.0,
+    inv_tol = 1e-4
+);
 // I16F16: components from 2⁻¹⁰ (so the direction is still resolvable) to
 // 5000 (so the length fits); rotation entries carry ≤ 1 step of trig error,
 // sums of 3 products ≤ 8 steps; the round trip through a scaled inverse is
 // within 2·10⁻² for |p| ≤ 10.
-math_suite!(i16f16_suite, I16F16, small = 1.0 / 1024.0, large = 5000.0, rot_steps = 8.0, inv_tol = 2e-2);
+math_suite!(
+    i16f16_suite,
+    I16F16,
+    small = 1.0 / 1024.0,
+    large = 5000.0,
+    rot_steps = 8.0,
+    inv_tol = 2e-2
+);
 
 #[test]
 fn non_finite_vectors_do_not_normalize() {

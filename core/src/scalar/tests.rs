@@ -46,7 +46,11 @@ fn sin_cos_match_f64<T: Scalar>(max_ulps: f64) {
         let ec = (c.to_f64() - exact.cos()).abs() / ulp_at::<T>(exact.cos().abs().max(1e-3));
         worst = worst.max(es).max(ec);
     }
-    assert!(worst <= max_ulps, "{}: sin/cos error {worst} steps", T::NAME);
+    assert!(
+        worst <= max_ulps,
+        "{}: sin/cos error {worst} steps",
+        T::NAME
+    );
 }
 
 fn atan2_asin_match_f64<T: Scalar>(max_ulps: f64) {
@@ -70,7 +74,11 @@ fn atan2_asin_match_f64<T: Scalar>(max_ulps: f64) {
         };
         worst = worst.max(e / (ulp_at::<T>(exact.abs().max(1e-3)) * slope));
     }
-    assert!(worst <= max_ulps, "{}: atan2/asin error {worst} steps", T::NAME);
+    assert!(
+        worst <= max_ulps,
+        "{}: atan2/asin error {worst} steps",
+        T::NAME
+    );
     assert_eq!(T::ZERO.atan2(T::ZERO), T::ZERO);
     let pi = T::ZERO.atan2(-T::ONE).to_f64();
     assert!((pi - core::f64::consts::PI).abs() <= max_ulps * ulp_at::<T>(3.2));
@@ -103,7 +111,11 @@ fn checked_ops_report_overflow<T: Scalar>() {
     assert_eq!(T::try_from_f64(f64::NAN), None);
     assert_eq!(T::try_from_f64(f64::INFINITY), None);
     // A value beyond the range (for f64 only ∞ is).
-    let big = if T::MAX.to_f64() < 1e300 { 1e300 } else { f64::INFINITY };
+    let big = if T::MAX.to_f64() < 1e300 {
+        1e300
+    } else {
+        f64::INFINITY
+    };
     assert_eq!(T::try_from_f64(big), None);
     assert_eq!(T::from_f64(big), T::MAX);
     assert_eq!(T::from_f64(-big), T::MIN);
@@ -177,7 +189,10 @@ fn fixed_operators_saturate_instead_of_wrapping() {
     assert_eq!(T::from_i32(40_000), T::MAX);
     assert_eq!((-T::ONE).sqrt(), T::ZERO);
     let mut flag = false;
-    assert_eq!(T::from_i32(300).sub_mul_flag(T::from_i32(300), T::from_i32(300), &mut flag), T::MIN);
+    assert_eq!(
+        T::from_i32(300).sub_mul_flag(T::from_i32(300), T::from_i32(300), &mut flag),
+        T::MIN
+    );
     assert!(flag);
 }
 

@@ -92,7 +92,9 @@ fn random_with_condition<const N: usize>(rng: &mut Rng, kappa: f64) -> [[f64; N]
             kappa.powf(-(i as f64) / (N as f64 - 1.0))
         }
     });
-    core::array::from_fn(|i| core::array::from_fn(|j| (0..N).map(|k| u[i][k] * sigma[k] * v[j][k]).sum()))
+    core::array::from_fn(|i| {
+        core::array::from_fn(|j| (0..N).map(|k| u[i][k] * sigma[k] * v[j][k]).sum())
+    })
 }
 
 fn cast<T: Scalar, const N: usize, const M: usize>(a: &[[f64; M]; N]) -> [[T; M]; N] {
@@ -131,11 +133,11 @@ fn residual_suite<T: Scalar, const N: usize, const M: usize>(stats: &mut Stats) 
     for &kappa in &kappas {
         for _ in 0..3 {
             let a64 = random_with_condition::<N>(&mut rng, kappa);
-            let b64: [[f64; M]; N] = core::array::from_fn(|_| core::array::from_fn(|_| rng.range(-1.0, 1.0)));
+            let b64: [[f64; M]; N] =
+                core::array::from_fn(|_| core::array::from_fn(|_| rng.range(-1.0, 1.0)));
             let (a, b) = (cast::<T, N, N>(&a64), cast::<T, N, M>(&b64));
-            let sol = solve(&a, &b).unwrap_or_else(|e| {
-                panic!("{} n={N} m={M} κ₂={kappa:e}: unexpected {e}", T::NAME)
-            });
+            let sol = solve(&a, &b)
+                .unwrap_or_else(|e| panic!("{} n={N} m={M} κ₂={kappa:e}: unexpected {e}", T::NAME));
             let ratio = residual_ratio(&a, &sol.x, &b);
             assert!(
                 ratio < 30.0,
@@ -149,9 +151,17 @@ fn residual_suite<T: Scalar, const N: usize, const M: usize>(stats: &mut Stats) 
             let rc = sol.diagnostics.rcond.to_f64();
             let truth = true_rcond(&to_f64(&a));
             let rounding = 1.0 + N as f64 * T::EPSILON.to_f64() / truth;
-            assert!(rc >= truth / rounding, "{} n={N}: rcond {rc} < true {truth}", T::NAME);
+            assert!(
+                rc >= truth / rounding,
+                "{} n={N}: rcond {rc} < true {truth}",
+                T::NAME
+            );
             let over = rc / truth;
-            assert!(over <= N as f64, "{} n={N}: rcond {rc} vs true {truth}", T::NAME);
+            assert!(
+                over <= N as f64,
+                "{} n={N}: rcond {rc} vs true {truth}",
+                T::NAME
+            );
             assert!(sol.diagnostics.growth.to_f64() >= 1.0);
             stats.systems += 1;
             stats.worst_ratio = stats.worst_ratio.max(ratio);
@@ -197,7 +207,10 @@ fn hilbert_case<T: Scalar, const N: usize>() -> Result<(f64, f64, f64, f64), Sol
     // b = H_stored · 1, rounded to T.
     let b: [[T; 1]; N] = core::array::from_fn(|i| [T::from_f64(hf[i].iter().sum())]);
     let s = solve(&h, &b)?;
-    let fwd = s.x.iter().map(|r| (r[0].to_f64() - 1.0).abs()).fold(0.0, f64::max);
+    let fwd =
+        s.x.iter()
+            .map(|r| (r[0].to_f64() - 1.0).abs())
+            .fold(0.0, f64::max);
     Ok((
         fwd,
         residual_ratio(&h, &s.x, &b),
@@ -212,9 +225,7 @@ fn hilbert_case<T: Scalar, const N: usize>() -> Result<(f64, f64, f64, f64), Sol
 fn hilbert_growing_order() {
     macro_rules! run {
         ($t:ty; $($n:literal),*) => {{
-            let mut out = Vec::new();
-            $( out.push(($n, hilbert_case::<$t, $n>())); )*
-            out
+            std::vec![$(($n, hilbert_case::<$t, $n>())),*]
         }};
     }
     let f64_results = run!(f64; 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14);
@@ -226,17 +237,30 @@ fn hilbert_growing_order() {
                     println!(
                         "{name} Hilbert n={n}: forward error {fwd:.2e}, residual ratio {ratio:.3}, growth {growth:.3}, rcond {rcond:.3e}"
                     );
-                    assert!(*n <= last_ok, "{name} H{n} should be reported ill-conditioned");
+                    assert!(
+                        *n <= last_ok,
+                        "{name} H{n} should be reported ill-conditioned"
+                    );
                     assert!(*ratio < 30.0);
                     // Forward error ≤ κ·ε·(small constant): checks the
                     // solution, not only the residual.
-                    let eps = if name == "f64" { f64::EPSILON } else { f32::EPSILON as f64 };
-                    assert!(*fwd <= 10.0 * eps / rcond, "{name} H{n}: forward error {fwd}");
+                    let eps = if name == "f64" {
+                        f64::EPSILON
+                    } else {
+                        f32::EPSILON as f64
+                    };
+                    assert!(
+                        *fwd <= 10.0 * eps / rcond,
+                        "{name} H{n}: forward error {fwd}"
+                    );
                 }
                 Err(e) => {
                     println!("{name} Hilbert n={n}: {e}");
                     assert!(*n > last_ok, "{name} H{n}: unexpected {e}");
-                    assert!(matches!(e, SolveError::IllConditioned { .. }), "{name} H{n}: {e}");
+                    assert!(
+                        matches!(e, SolveError::IllConditioned { .. }),
+                        "{name} H{n}: {e}"
+                    );
                 }
             }
         }
@@ -264,7 +288,12 @@ fn wilkinson_growth_is_reported_exactly() {
     fn check<T: Scalar, const N: usize>() {
         let a: [[T; N]; N] = cast(&wilkinson::<N>());
         let lu = Lu::factor(&a).expect("nonsingular");
-        assert_eq!(lu.growth().to_f64(), (1u64 << (N - 1)) as f64, "{} n={N}", T::NAME);
+        assert_eq!(
+            lu.growth().to_f64(),
+            (1u64 << (N - 1)) as f64,
+            "{} n={N}",
+            T::NAME
+        );
     }
     check::<f64, 2>();
     check::<f64, 8>();
@@ -289,13 +318,22 @@ fn near_singular_2x2() {
     assert!((rc / (1e-3 / 4.0) - 1.0).abs() < 0.01, "rcond {rc}");
     // d below half an ulp of 1: the stored matrix is exactly singular.
     let (a, b) = sys(f64::EPSILON / 4.0);
-    assert_eq!(solve(&a, &b).unwrap_err(), SolveError::Singular { column: 1 });
+    assert_eq!(
+        solve(&a, &b).unwrap_err(),
+        SolveError::Singular { column: 1 }
+    );
     // d a few ulps: nonzero pivot, but singular to working precision.
     let (a, b) = sys(4.0 * f64::EPSILON);
-    assert!(matches!(solve(&a, &b), Err(SolveError::IllConditioned { .. })));
+    assert!(matches!(
+        solve(&a, &b),
+        Err(SolveError::IllConditioned { .. })
+    ));
     // The same in f32.
     let a = [[1.0f32, 1.0], [1.0, 1.0 + 2.0 * f32::EPSILON]];
-    assert!(matches!(solve(&a, &[[2.0f32], [2.0]]), Err(SolveError::IllConditioned { .. })));
+    assert!(matches!(
+        solve(&a, &[[2.0f32], [2.0]]),
+        Err(SolveError::IllConditioned { .. })
+    ));
 }
 
 /// Rank 2 in exact arithmetic (row 3 = row 1 + row 2 in decimals that are
@@ -371,7 +409,9 @@ fn power_of_two_scaling_is_bit_identical() {
             }
             // Column scaling changes the condition number, so the rcond
             // threshold is switched off for this half of the check.
-            let xc = solve_with(&ac, &b, &SolveConfig { rcond_min: 0.0 }).unwrap().x;
+            let xc = solve_with(&ac, &b, &SolveConfig { rcond_min: 0.0 })
+                .unwrap()
+                .x;
             for i in 0..5 {
                 for j in 0..2 {
                     let expect = if i == 2 { x[i][j] / s } else { x[i][j] };
@@ -387,7 +427,8 @@ fn many_right_hand_sides_equal_separate_solves() {
     fn check<T: Scalar>() {
         let mut rng = Rng::new(7);
         let a: [[T; 6]; 6] = cast(&random_with_condition::<6>(&mut rng, 100.0));
-        let b: [[T; 4]; 6] = core::array::from_fn(|_| core::array::from_fn(|_| T::from_f64(rng.normal())));
+        let b: [[T; 4]; 6] =
+            core::array::from_fn(|_| core::array::from_fn(|_| T::from_f64(rng.normal())));
         let together = solve(&a, &b).unwrap().x;
         for j in 0..4 {
             let bj: [[T; 1]; 6] = core::array::from_fn(|i| [b[i][j]]);
@@ -409,7 +450,8 @@ fn fixed_point_systems() {
     let mut rng = Rng::new(5);
     for _ in 0..100 {
         let a64 = random_with_condition::<4>(&mut rng, 10.0).map(|r| r.map(|v| v * 8.0));
-        let b64: [[f64; 2]; 4] = core::array::from_fn(|_| [rng.range(-8.0, 8.0), rng.range(-8.0, 8.0)]);
+        let b64: [[f64; 2]; 4] =
+            core::array::from_fn(|_| [rng.range(-8.0, 8.0), rng.range(-8.0, 8.0)]);
         let (a, b) = (cast::<T, 4, 4>(&a64), cast::<T, 4, 2>(&b64));
         let s = solve(&a, &b).unwrap();
         // Fixed point has an absolute, not relative, step, so the LAPACK
@@ -438,8 +480,14 @@ fn non_finite_input_is_rejected() {
     for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
         let mut a = good;
         a[1][0] = bad;
-        assert_eq!(solve(&a, &[[1.0], [1.0]]).unwrap_err(), SolveError::NonFinite);
-        assert_eq!(solve(&good, &[[1.0], [bad]]).unwrap_err(), SolveError::NonFinite);
+        assert_eq!(
+            solve(&a, &[[1.0], [1.0]]).unwrap_err(),
+            SolveError::NonFinite
+        );
+        assert_eq!(
+            solve(&good, &[[1.0], [bad]]).unwrap_err(),
+            SolveError::NonFinite
+        );
     }
 }
 
@@ -468,5 +516,9 @@ fn errors_display() {
         SolveError::Singular { column: 2 }.to_string(),
         "matrix is singular: zero pivot in column 2"
     );
-    assert!(SolveError::IllConditioned { rcond: 1e-9 }.to_string().contains("1e-9"));
+    assert!(
+        SolveError::IllConditioned { rcond: 1e-9 }
+            .to_string()
+            .contains("1e-9")
+    );
 }

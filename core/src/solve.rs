@@ -68,7 +68,7 @@ impl fmt::Display for SolveError {
             }
             Self::IllConditioned { rcond } => write!(
                 f,
-                "matrix is singular to working precision (reciprocal condition estimate {rcond:e})"
+                "matrix is singular to working precision (reciprocal condition number {rcond:e})"
             ),
             Self::Overflow => f.write_str("arithmetic overflow during elimination"),
             Self::NonFinite => f.write_str("input contains NaN or infinity"),

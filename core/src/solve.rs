@@ -53,8 +53,8 @@ pub enum SolveError {
         rcond: f32,
     },
     /// An intermediate or the solution overflowed the representation: a
-    /// fixed-point product or quotient that would have saturated, or a float
-    /// that became ±∞.
+    /// fixed-point product or quotient that would have saturated (including
+    /// ‖A‖₁, the largest column sum of |A|), or a float that became ±∞.
     Overflow,
     /// The input contains NaN or ±∞.
     NonFinite,
@@ -209,6 +209,12 @@ impl<S: Scalar, const N: usize> Lu<S, N> {
                 col += v;
             }
             norm1 = norm1.max_of(col);
+        }
+        // Fixed point: a column sum of |A| beyond the range saturates, and
+        // then no condition number can be formed; report it rather than
+        // return diagnostics computed from a clipped norm.
+        if !S::IS_FLOAT && norm1 == S::MAX {
+            return Err(SolveError::Overflow);
         }
         let mut max_seen = max_a;
         let mut overflow = false;

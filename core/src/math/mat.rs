@@ -143,6 +143,20 @@ impl<S: Scalar> Mat3<S> {
             m: [[d.x, z, z], [z, d.y, z], [z, z, d.z]],
         }
     }
+    /// The nearest-in-spirit rotation to a drifted one: Gram–Schmidt on the
+    /// rows (row 0 normalised, row 1 made orthogonal to it and normalised,
+    /// row 2 = row 0 × row 1). Use it to re-orthonormalise a rotation that
+    /// accumulates many small incremental products.
+    ///
+    /// Returns `None` when the first two rows are zero, parallel or not
+    /// finite.
+    #[must_use]
+    pub fn try_orthonormalize(&self) -> Option<Self> {
+        let r0 = self.row(0).try_normalize()?;
+        let r1 = self.row(1);
+        let r1 = (r1 - r0 * r0.dot(r1)).try_normalize()?;
+        Some(Self::from_rows(r0, r1, r0.cross(r1)))
+    }
     /// Converts every entry to another scalar type.
     #[must_use]
     pub fn cast<T: Scalar>(&self) -> Mat3<T> {

@@ -13,7 +13,10 @@ use sightline::solve::{SolveError, solve};
 /// A deterministic point cloud: 24 points in a box 800 units wide, 1500 to
 /// 2500 units in front of the camera, and their exact pixels under
 /// P = K [R | t] with f = 500 px, principal point (320, 240).
-fn scene() -> (Vec<[f64; 3]>, Vec<[f64; 2]>, [[f64; 4]; 3]) {
+/// World points, their pixels, and the true camera matrix.
+type Scene = (Vec<[f64; 3]>, Vec<[f64; 2]>, [[f64; 4]; 3]);
+
+fn scene() -> Scene {
     let (a, b) = (0.2f64, -0.35f64);
     let r = [
         [b.cos(), 0.0, b.sin()],
@@ -167,8 +170,8 @@ fn camera_recovery_needs_normalised_data_in_f32() {
     // normalising gains an order of magnitude (1.1e-13 px). Bounds are 100×
     // the measurements: loose enough for other libm/CPU rounding, tight
     // enough to catch a lost normalisation or a broken solver.
-    let raw64 = raw.0.clone().expect("raw f64 solves");
-    let norm64 = norm.0.clone().expect("normalised f64 solves");
+    let raw64 = raw.0.expect("raw f64 solves");
+    let norm64 = norm.0.expect("normalised f64 solves");
     assert!(raw64 < 2e-10, "raw f64 {raw64}");
     assert!(norm64 < 2e-11, "normalised f64 {norm64}");
     assert!(norm64 < raw64);
@@ -182,6 +185,6 @@ fn camera_recovery_needs_normalised_data_in_f32() {
     );
     // Normalised, f32 recovers the camera to a small fraction of a pixel
     // (measured 3.8e-5 px).
-    let norm32 = norm.1.clone().expect("normalised f32 solves");
+    let norm32 = norm.1.expect("normalised f32 solves");
     assert!(norm32 < 4e-3, "normalised f32 {norm32}");
 }

@@ -323,6 +323,8 @@ impl<S: Scalar> Projection<S> {
     /// callers clip against a near plane first) and whenever the result
     /// overflows or is not finite.
     #[must_use]
+    // `!(z > 0)` is deliberate: it also rejects NaN.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
     pub fn project(&self, p: Vec3<S>) -> Option<(Vec2<S>, S)> {
         let mut overflow = false;
         let out = match self.kind {

@@ -15,6 +15,8 @@
 //! | [`solve`] | Gaussian elimination with partial pivoting, N×N with M right-hand sides, with pivot growth and a condition estimate |
 //! | [`transform`] | object→world from roll, pitch, yaw and an origin |
 //! | [`camera`] | cameras from angles, orthonormal vectors or general vectors (via [`solve`]); projections |
+//! | [`raster`] | integer scan conversion of convex polygons (28.4 sub-pixel, top-left rule) into spans; span shaders (flat, Gouraud); optional depth buffer |
+//! | [`target`] | span sinks: slice framebuffer with stride, bands for strip rendering, embedded-graphics `DrawTarget` adapter |
 //!
 //! ## Coordinate conventions
 //!
@@ -51,8 +53,16 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs, missing_debug_implementations)]
 
+#[cfg(test)]
+extern crate std;
+
 pub mod camera;
 pub mod math;
+pub mod raster;
 pub mod scalar;
 pub mod solve;
+pub mod target;
+
+#[cfg(test)]
+mod testutil;
 pub mod transform;

@@ -312,6 +312,9 @@ impl<S: Scalar, const N: usize> Lu<S, N> {
 
     /// Solves `Aᵀ z = c` with the same factors: `Uᵀ w = c`, `Lᵀ v = w`,
     /// `z = Pᵀ v`. Returns `None` on overflow.
+    // Index loops mirror the textbook's triangular solves (lu[j][i] is a
+    // column walk, which an iterator over `w` would hide).
+    #[allow(clippy::needless_range_loop)]
     fn solve_transposed(&self, c: &[S; N]) -> Option<[S; N]> {
         let mut overflow = false;
         let mut w = *c;

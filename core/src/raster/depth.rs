@@ -9,7 +9,7 @@ use crate::target::{BufferError, Rect, layout::Layout};
 
 /// Depth keys: 0 is nearest, 65535 farthest. The pipeline maps the near
 /// plane to 0 and the far plane to 65535 (see
-/// the `pipeline` module).
+/// [`pipeline`](crate::pipeline)).
 pub type DepthKey = u16;
 
 /// Fractional bits of the interpolated depth key (24.8 in an `i32`): the

@@ -31,11 +31,12 @@ pub trait SpanShader<const K: usize> {
     fn color(&self, v: &[i32; K]) -> Self::Color;
 }
 
-/// One colour for the whole polygon. Uses no varyings (`K = 0`).
+/// One colour for the whole polygon. Ignores any varyings, so it works
+/// with every vertex format, and the scan converter skips their set-up.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Flat<C>(pub C);
 
-impl<C: Copy> SpanShader<0> for Flat<C> {
+impl<C: Copy, const K: usize> SpanShader<K> for Flat<C> {
     type Color = C;
 
     fn solid(&self) -> Option<C> {
@@ -43,13 +44,15 @@ impl<C: Copy> SpanShader<0> for Flat<C> {
     }
 
     #[inline]
-    fn color(&self, _v: &[i32; 0]) -> C {
+    fn color(&self, _v: &[i32; K]) -> C {
         self.0
     }
 }
 
-/// Gouraud shading: one varying, the intensity 0..=255 (16.16), looked up
-/// in a 256-entry colour ramp. Per pixel: one add, one shift, one load.
+/// Gouraud shading: the first varying is the intensity 0..=255 (16.16),
+/// looked up in a 256-entry colour ramp; further varyings are ignored.
+/// Per pixel: one add, one shift, one load. With `K = 0` every pixel gets
+/// `ramp[0]`.
 ///
 /// Build a ramp with [`Shade::ramp`] or fill one by hand (a palette).
 #[derive(Clone, Copy, Debug)]
@@ -65,16 +68,18 @@ impl<'a, C: Copy> Gouraud<'a, C> {
     }
 }
 
-impl<C: Copy> SpanShader<1> for Gouraud<'_, C> {
+impl<C: Copy, const K: usize> SpanShader<K> for Gouraud<'_, C> {
     type Color = C;
     const RANGE: (i32, i32) = (0, (256 << VARYING_FRAC_BITS) - 1);
 
     #[inline]
-    fn color(&self, v: &[i32; 1]) -> C {
+    fn color(&self, v: &[i32; K]) -> C {
         // RANGE keeps v[0] >> 16 in 0..=255; the `u8` cast only drops
         // bits that are already zero, and a u8 index cannot miss a
-        // 256-entry array.
-        self.ramp[(v[0] >> VARYING_FRAC_BITS) as u8 as usize]
+        // 256-entry array. `first()` is resolved at compile time (K is a
+        // constant).
+        let i = v.first().map_or(0, |&i| i >> VARYING_FRAC_BITS);
+        self.ramp[i as u8 as usize]
     }
 }
 

@@ -1,0 +1,403 @@
+use super::*;
+use crate::camera::Projection;
+use crate::raster::{DepthBuffer, Flat, Gouraud, NoDepth};
+use crate::scalar::{I16F16, Scalar};
+use crate::testutil::MockTarget;
+use proptest::prelude::*;
+use std::vec::Vec;
+
+fn v3<S: Scalar>(x: f64, y: f64, z: f64) -> Vec3<S> {
+    Vec3::new(S::from_f64(x), S::from_f64(y), S::from_f64(z))
+}
+
+fn vi<S: Scalar>(x: f64, y: f64, z: f64, i: f64) -> VertexXyzI<S> {
+    Vertex::new(v3(x, y, z), Intensity(S::from_f64(i)))
+}
+
+/// 12×8 viewport, focus 8 px, near 1, far 100, guard 4 px.
+fn pipe<S: Scalar>() -> Pipeline<S> {
+    Pipeline::new(
+        Projection::perspective(S::from_i32(8), 12, 8),
+        12,
+        8,
+        S::ONE,
+        S::from_i32(100),
+        S::from_i32(4),
+    )
+    .unwrap()
+}
+
+fn near_only<S: Scalar>(near: f64) -> Frustum<S> {
+    Frustum::from_planes(&[Plane::new(v3(0.0, 0.0, 1.0), S::from_f64(-near))])
+}
+
+fn digits() -> [char; 256] {
+    core::array::from_fn(|i| char::from(b'0' + (i * 10 / 256) as u8))
+}
+
+/// Tolerance for comparisons in the scalar type: 256 ε times a magnitude.
+fn tol<S: Scalar>(mag: f64) -> f64 {
+    S::EPSILON.to_f64() * 256.0 * mag.max(1.0)
+}
+
+fn near_clip_interpolates<S: Scalar>() {
+    // Edge z = 0 → 2 with intensity 0 → 1 crosses z = 1 at intensity ½.
+    let tri = [
+        vi::<S>(0.0, 0.0, 0.0, 0.0),
+        vi(0.0, 0.0, 2.0, 1.0),
+        vi(1.0, 0.0, 2.0, 1.0),
+    ];
+    let out = near_only::<S>(1.0).clip(&tri).unwrap();
+    assert_eq!(out.len(), 4);
+    for v in &out {
+        assert!(v.pos.z.to_f64() >= 1.0 - tol::<S>(2.0));
+    }
+    let mid = out
+        .iter()
+        .find(|v| v.pos.x.to_f64().abs() < tol::<S>(1.0))
+        .unwrap();
+    assert!((mid.pos.z.to_f64() - 1.0).abs() <= tol::<S>(2.0));
+    assert!((mid.attr.0.to_f64() - 0.5).abs() <= tol::<S>(1.0));
+}
+
+fn vertex_on_plane_is_kept_once<S: Scalar>() {
+    let f = near_only::<S>(1.0);
+    // One vertex on the plane, the rest inside: unchanged.
+    let tri = [
+        vi::<S>(0.0, 0.0, 1.0, 0.2),
+        vi(1.0, 0.0, 2.0, 0.4),
+        vi(0.0, 1.0, 3.0, 0.6),
+    ];
+    let out = f.clip(&tri).unwrap();
+    assert_eq!(&out[..], &tri[..]);
+    // One on the plane, one on each side: the on-plane vertex appears once,
+    // plus one intersection.
+    let tri = [
+        vi::<S>(0.0, 0.0, 1.0, 0.0),
+        vi(1.0, 0.0, 0.0, 0.0),
+        vi(0.0, 1.0, 3.0, 1.0),
+    ];
+    let out = f.clip(&tri).unwrap();
+    assert_eq!(out.len(), 3);
+    assert_eq!(out.iter().filter(|v| **v == tri[0]).count(), 1);
+    // Only touching the plane from outside: nothing remains.
+    let tri = [
+        vi::<S>(0.0, 0.0, 1.0, 0.0),
+        vi(1.0, 0.0, 0.0, 0.0),
+        vi(0.0, 1.0, 0.5, 1.0),
+    ];
+    assert!(f.clip(&tri).unwrap().is_empty());
+}
+
+fn polygon_in_plane_is_kept<S: Scalar>() {
+    let quad = [
+        vi::<S>(-1.0, -1.0, 1.0, 0.0),
+        vi(1.0, -1.0, 1.0, 0.0),
+        vi(1.0, 1.0, 1.0, 1.0),
+        vi(-1.0, 1.0, 1.0, 1.0),
+    ];
+    assert_eq!(&near_only::<S>(1.0).clip(&quad).unwrap()[..], &quad[..]);
+    // Wholly behind: empty.
+    let behind: Vec<_> = quad
+        .iter()
+        .map(|v| Vertex::new(v3::<S>(0.0, 0.0, -1.0) + v.pos, v.attr))
+        .collect();
+    assert!(near_only::<S>(1.0).clip(&behind).unwrap().is_empty());
+}
+
+fn shared_edges_clip_identically<S: Scalar>() {
+    // Two triangles share the edge P–Q, which crosses the near plane and
+    // the left side plane; they traverse it in opposite directions.
+    let p = pipe::<S>();
+    let (pp, q) = (vi::<S>(-9.0, -0.5, 0.25, 0.0), vi::<S>(0.7, 0.9, 6.0, 1.0));
+    let a = [pp, q, vi(-2.0, 3.0, 3.0, 0.5)];
+    let b = [q, pp, vi(1.0, -2.0, 2.0, 0.5)];
+    let ca = p.frustum().clip(&a).unwrap();
+    let cb = p.frustum().clip(&b).unwrap();
+    // Vertices of `ca` on the line P–Q must appear bit-identically in `cb`.
+    let on_pq = |v: &VertexXyzI<S>| {
+        let d = q.pos - pp.pos;
+        let e = v.pos - pp.pos;
+        let c = d.cross(e);
+        let (x, y, z) = (c.x.to_f64(), c.y.to_f64(), c.z.to_f64());
+        (x * x + y * y + z * z).sqrt() <= tol::<S>(100.0)
+    };
+    let shared: Vec<_> = ca.iter().filter(|v| on_pq(v)).collect();
+    assert_eq!(shared.len(), 2, "{ca:?}");
+    for v in shared {
+        assert!(cb.iter().any(|w| w.pos == v.pos), "{v:?} not in {cb:?}");
+    }
+    // And the scan converter draws them without overlap.
+    let mut t = MockTarget::new(12, 8);
+    p.draw_polygon(&mut t, &mut NoDepth, &Flat('a'), &a)
+        .unwrap();
+    p.draw_polygon(&mut t, &mut NoDepth, &Flat('b'), &b)
+        .unwrap();
+}
+
+fn square_pattern<S: Scalar>() {
+    // x, y ∈ [−1, 1] at z = 2 projects to x_s ∈ [2, 10], y_s ∈ [0, 8].
+    let p = pipe::<S>();
+    let sq = [
+        vi::<S>(-1.0, -1.0, 2.0, 0.0),
+        vi(1.0, -1.0, 2.0, 1.0),
+        vi(1.0, 1.0, 2.0, 1.0),
+        vi(-1.0, 1.0, 2.0, 0.0),
+    ];
+    let mut t = MockTarget::new(12, 8);
+    p.draw_polygon(&mut t, &mut NoDepth, &Gouraud::new(&digits()), &sq)
+        .unwrap();
+    // Intensity at centre x_s = c is 255·(c − 2)/8, shown as i·10/256.
+    t.assert_pattern(&[
+        "..01345689..", //
+        "..01345689..", //
+        "..01345689..", //
+        "..01345689..", //
+        "..01345689..", //
+        "..01345689..", //
+        "..01345689..", //
+        "..01345689..", //
+    ]);
+}
+
+fn near_clipped_floor_pattern<S: Scalar>() {
+    // A floor y = 1 from z = 0 (behind the near plane) to z = 4: clipped at
+    // z = 1 (y_s = 12, below the screen), far edge at y_s = 6, x_s ∈ [4, 8].
+    // Row 6's centre line meets the sides at 3.5 and 8.5, row 7's at 2.5
+    // and 9.5.
+    let p = pipe::<S>();
+    let floor = [
+        vi::<S>(-1.0, 1.0, 0.0, 0.0),
+        vi(1.0, 1.0, 0.0, 0.0),
+        vi(1.0, 1.0, 4.0, 0.0),
+        vi(-1.0, 1.0, 4.0, 0.0),
+    ];
+    let mut t = MockTarget::new(12, 8);
+    p.draw_polygon(&mut t, &mut NoDepth, &Flat('#'), &floor)
+        .unwrap();
+    t.assert_pattern(&[
+        "............", //
+        "............", //
+        "............", //
+        "............", //
+        "............", //
+        "............", //
+        "...#####....", //
+        "..#######...", //
+    ]);
+}
+
+fn depth_through_pipeline<S: Scalar>() {
+    // A near square (z = 2) and a larger far one (z = 4) overlapping it:
+    // drawn far first or near first, the near one wins where they overlap.
+    let p = pipe::<S>();
+    let sq = |h: f64, z: f64| {
+        [
+            Vertex::new(v3::<S>(-h, -h, z), ()),
+            Vertex::new(v3(h, -h, z), ()),
+            Vertex::new(v3(h, h, z), ()),
+            Vertex::new(v3(-h, h, z), ()),
+        ]
+    };
+    let near = sq(0.5, 2.0);
+    let far = sq(2.0, 4.0);
+    let expected = [
+        "..ffffffff..", //
+        "..ffffffff..", //
+        "..ffnnnnff..", //
+        "..ffnnnnff..", //
+        "..ffnnnnff..", //
+        "..ffnnnnff..", //
+        "..ffffffff..", //
+        "..ffffffff..", //
+    ];
+    for near_first in [false, true] {
+        let mut zb = [u16::MAX; 96];
+        let mut depth = DepthBuffer::new(&mut zb, 12, 8, 12, 0).unwrap();
+        let mut t = MockTarget::new(12, 8);
+        t.allow_overdraw = !near_first;
+        let order = if near_first {
+            [(near, 'n'), (far, 'f')]
+        } else {
+            [(far, 'f'), (near, 'n')]
+        };
+        for (poly, c) in order {
+            p.draw_polygon(&mut t, &mut depth, &Flat(c), &poly).unwrap();
+        }
+        t.assert_pattern(&expected);
+    }
+}
+
+fn bad_input<S: Scalar>() {
+    let p = pipe::<S>();
+    let mut t = MockTarget::new(12, 8);
+    t.allow_overdraw = true;
+    let mut zb = [u16::MAX; 96];
+    let mut depth = DepthBuffer::new(&mut zb, 12, 8, 12, 0).unwrap();
+    // `from_f64` maps NaN to 0 and saturates, so build the specials by
+    // arithmetic: 0/0 and ±1/0 are NaN and ±∞ for floats (0 and
+    // saturated for fixed point).
+    let sp = |k: usize| -> S {
+        match k {
+            0 => S::ZERO / S::from_i32(0),
+            1 => S::ONE / S::ZERO,
+            2 => -S::ONE / S::ZERO,
+            k => S::from_f64([1e30, -1e30, 0.0, 1e-30, 3e4, -3e4, 0.5][k - 3]),
+        }
+    };
+    for a in 0..10 {
+        for b in 0..10 {
+            let (x, y) = (sp(a), sp(b));
+            let tri = [
+                Vertex::new(Vec3::new(x, S::HALF, S::TWO), Intensity(y)),
+                Vertex::new(Vec3::new(S::ONE, y, x), Intensity(S::HALF)),
+                Vertex::new(Vec3::new(-S::ONE, S::ONE, y), Intensity(x)),
+            ];
+            let r = p.draw_polygon(&mut t, &mut depth, &Gouraud::new(&digits()), &tri);
+            if S::IS_FLOAT && (a < 3 || b < 3) {
+                assert_eq!(r, Err(DrawError::Clip(ClipError::NonFinite)));
+            }
+        }
+    }
+    // Fixed-point extremes.
+    let (mx, mn) = (S::MAX.to_f64(), S::MIN.to_f64());
+    let tri = [
+        vi::<S>(mx, mn, mx, mx),
+        vi(mn, mx, S::EPSILON.to_f64(), mn),
+        vi(0.0, 0.0, mx, 0.5),
+    ];
+    let _ = p.draw_polygon(&mut t, &mut depth, &Gouraud::new(&digits()), &tri);
+    // Too many vertices.
+    let many = [vi::<S>(0.0, 0.0, 2.0, 0.0); MAX_INPUT_VERTICES + 1];
+    assert_eq!(
+        p.draw_polygon(&mut t, &mut NoDepth, &Flat('x'), &many),
+        Err(DrawError::Clip(ClipError::TooManyVertices))
+    );
+    // Degenerate pipelines are refused.
+    let proj = Projection::perspective(S::from_i32(8), 12, 8);
+    assert_eq!(
+        Pipeline::new(proj, 12, 8, S::ONE, S::ONE, S::ZERO),
+        Err(PipelineError::BadDepthRange)
+    );
+    assert_eq!(
+        Pipeline::new(proj, 12, 8, S::ZERO, S::ONE, S::ZERO),
+        Err(PipelineError::BadDepthRange)
+    );
+}
+
+fn parallel_projection_square<S: Scalar>() {
+    // Scale 2 px per unit about (6, 4): x, y ∈ [−2, 2] → [2, 10] × [0, 8].
+    let p = Pipeline::new(
+        Projection::parallel(S::TWO, 12, 8),
+        12,
+        8,
+        S::ONE,
+        S::from_i32(10),
+        S::ZERO,
+    )
+    .unwrap();
+    let sq = [
+        Vertex::new(v3::<S>(-2.0, -3.0, 5.0), ()),
+        Vertex::new(v3(2.0, -3.0, 5.0), ()),
+        Vertex::new(v3(2.0, 1.0, 5.0), ()),
+        Vertex::new(v3(-2.0, 1.0, 5.0), ()),
+    ];
+    let mut t = MockTarget::new(12, 8);
+    p.draw_polygon(&mut t, &mut NoDepth, &Flat('#'), &sq)
+        .unwrap();
+    // y ∈ [−3, 1] → y_s ∈ [−2, 6]; the top is clipped by the side plane
+    // at the screen edge (guard 0).
+    t.assert_pattern(&[
+        "..########..", //
+        "..########..", //
+        "..########..", //
+        "..########..", //
+        "..########..", //
+        "..########..", //
+        "............", //
+        "............", //
+    ]);
+}
+
+/// Clipped vertices lie inside every plane (within tolerance) and their
+/// intensities within the input's range.
+fn clip_stays_in_volume<S: Scalar>(pts: &[(f64, f64, f64, f64)]) {
+    let p = pipe::<S>();
+    let tri: Vec<VertexXyzI<S>> = pts.iter().map(|&(x, y, z, i)| vi(x, y, z, i)).collect();
+    let (lo, hi) = tri.iter().fold((f64::MAX, f64::MIN), |(lo, hi), v| {
+        (lo.min(v.attr.0.to_f64()), hi.max(v.attr.0.to_f64()))
+    });
+    let out = p.frustum().clip(&tri).unwrap();
+    assert!(out.len() <= MAX_CLIPPED_VERTICES);
+    for v in &out {
+        for pl in p.frustum().planes() {
+            let d = pl.distance(v.pos).to_f64();
+            assert!(d >= -tol::<S>(200.0), "{v:?} outside {pl:?} by {d}");
+        }
+        let i = v.attr.0.to_f64();
+        assert!(
+            i >= lo - tol::<S>(1.0) && i <= hi + tol::<S>(1.0),
+            "{i} not in [{lo}, {hi}]"
+        );
+    }
+    // And drawing never escapes the target.
+    let mut t = MockTarget::new(12, 8);
+    let _ = p.draw_polygon(&mut t, &mut NoDepth, &Gouraud::new(&digits()), &tri);
+}
+
+macro_rules! pipeline_tests {
+    ($m:ident, $S:ty) => {
+        mod $m {
+            use super::*;
+            #[test]
+            fn near_clip_interpolates() {
+                super::near_clip_interpolates::<$S>();
+            }
+            #[test]
+            fn vertex_on_plane_is_kept_once() {
+                super::vertex_on_plane_is_kept_once::<$S>();
+            }
+            #[test]
+            fn polygon_in_plane_is_kept() {
+                super::polygon_in_plane_is_kept::<$S>();
+            }
+            #[test]
+            fn shared_edges_clip_identically() {
+                super::shared_edges_clip_identically::<$S>();
+            }
+            #[test]
+            fn square_pattern() {
+                super::square_pattern::<$S>();
+            }
+            #[test]
+            fn near_clipped_floor_pattern() {
+                super::near_clipped_floor_pattern::<$S>();
+            }
+            #[test]
+            fn depth_through_pipeline() {
+                super::depth_through_pipeline::<$S>();
+            }
+            #[test]
+            fn bad_input() {
+                super::bad_input::<$S>();
+            }
+            #[test]
+            fn parallel_projection_square() {
+                super::parallel_projection_square::<$S>();
+            }
+            proptest! {
+                #[test]
+                fn clip_stays_in_volume(
+                    pts in proptest::collection::vec(
+                        (-40.0f64..40.0, -40.0f64..40.0, -5.0f64..150.0, 0.0f64..1.0), 3..8),
+                ) {
+                    super::clip_stays_in_volume::<$S>(&pts);
+                }
+            }
+        }
+    };
+}
+
+pipeline_tests!(f32_tests, f32);
+pipeline_tests!(i16f16_tests, I16F16);
+pipeline_tests!(f64_tests, f64);

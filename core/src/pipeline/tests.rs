@@ -345,6 +345,67 @@ fn clip_stays_in_volume<S: Scalar>(pts: &[(f64, f64, f64, f64)]) {
     let _ = p.draw_polygon(&mut t, &mut NoDepth, &Gouraud::new(&digits()), &tri);
 }
 
+/// A small scene (two interpenetrating Gouraud quads, one crossing the
+/// near plane) rendered to a 24×20 frame in one go and in bands of
+/// `rows`: the results must be bit-identical.
+fn bands_match_full_frame<S: Scalar>() {
+    use crate::target::{Band, Framebuffer};
+    let p = Pipeline::new(
+        Projection::perspective(S::from_i32(16), 24, 20),
+        24,
+        20,
+        S::HALF,
+        S::from_i32(50),
+        S::from_i32(8),
+    )
+    .unwrap();
+    let scene = [
+        [
+            vi::<S>(-3.0, -2.0, 4.0, 0.0),
+            vi(2.0, -2.5, 6.0, 0.3),
+            vi(2.5, 2.0, 3.0, 1.0),
+            vi(-2.0, 2.5, 2.0, 0.6),
+        ],
+        [
+            vi::<S>(-1.0, 1.0, 0.1, 1.0),
+            vi(1.5, 1.0, 0.1, 0.8),
+            vi(1.5, -1.0, 9.0, 0.2),
+            vi(-1.0, -1.0, 9.0, 0.0),
+        ],
+    ];
+    let ramp: [u8; 256] = core::array::from_fn(|i| i as u8);
+    let sh = Gouraud::new(&ramp);
+    let mut full = [0u8; 24 * 20];
+    let mut zfull = [u16::MAX; 24 * 20];
+    {
+        let mut fb = Framebuffer::new(&mut full, 24, 20, 24).unwrap();
+        let mut depth = DepthBuffer::new(&mut zfull, 24, 20, 24, 0).unwrap();
+        for q in &scene {
+            p.draw_polygon(&mut fb, &mut depth, &sh, q).unwrap();
+        }
+    }
+    assert!(full.iter().filter(|&&c| c != 0).count() > 100);
+    for rows in [1u16, 4, 6] {
+        let mut out = Vec::new();
+        let mut buf = [0u8; 24 * 6];
+        let mut zb = [0u16; 24 * 6];
+        let mut y0 = 0;
+        while y0 < 20 {
+            let n = rows.min(20 - y0 as u16);
+            let mut band = Band::new(&mut buf, 24, n, 24, y0).unwrap();
+            let mut depth = DepthBuffer::new(&mut zb, 24, n, 24, y0).unwrap();
+            band.clear(0);
+            depth.clear();
+            for q in &scene {
+                p.draw_polygon(&mut band, &mut depth, &sh, q).unwrap();
+            }
+            out.extend_from_slice(&band.as_slice()[..24 * n as usize]);
+            y0 += n as i32;
+        }
+        assert_eq!(&out[..], &full[..], "bands of {rows}");
+    }
+}
+
 macro_rules! pipeline_tests {
     ($m:ident, $S:ty) => {
         mod $m {
@@ -376,6 +437,10 @@ macro_rules! pipeline_tests {
             #[test]
             fn depth_through_pipeline() {
                 super::depth_through_pipeline::<$S>();
+            }
+            #[test]
+            fn bands_match_full_frame() {
+                super::bands_match_full_frame::<$S>();
             }
             #[test]
             fn bad_input() {

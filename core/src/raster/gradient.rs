@@ -36,30 +36,37 @@ pub(super) struct Basis {
 impl Gradient {
     /// Fits the plane through values `a` at the basis vertices.
     ///
-    /// Uses i128 for the numerators: `Δa` (< 2^33) times an edge component
-    /// (< 2^30) times 2^EXTRA reaches 2^71. The quotient saturates to i64.
+    /// The numerators `Δa·e << EXTRA` can reach 2^71 (`Δa` < 2^33, an
+    /// edge component < 2^30), so the general path is i128. Polygons of
+    /// viewport size with 16.16 varyings stay far below 2^63, and take an
+    /// i64 path instead: on Cortex-M0 an i128 division is a long library
+    /// call, and this runs per polygon and per quantity. Both paths give
+    /// the same quotient (round to nearest, ties away from zero).
     pub(super) fn new(b: &Basis, a: [i64; 3]) -> Self {
         let (x0, y0) = b.p[0];
-        let e1 = (b.p[1].0 as i128 - x0 as i128, b.p[1].1 as i128 - y0 as i128);
-        let e2 = (b.p[2].0 as i128 - x0 as i128, b.p[2].1 as i128 - y0 as i128);
-        let da1 = (a[1] - a[0]) as i128;
-        let da2 = (a[2] - a[0]) as i128;
-        let area = b.area2 as i128;
-        let div = |num: i128| -> i64 {
-            // Round to nearest: add half the divisor with the quotient's sign.
-            let num = num << EXTRA;
-            let half = area.abs() / 2;
-            let q = if (num < 0) == (area < 0) {
-                (num + num.signum() * half) / area
-            } else {
-                (num - num.signum() * half) / area
-            };
-            q.clamp(i64::MIN as i128, i64::MAX as i128) as i64
+        let e1 = (b.p[1].0 as i64 - x0 as i64, b.p[1].1 as i64 - y0 as i64);
+        let e2 = (b.p[2].0 as i64 - x0 as i64, b.p[2].1 as i64 - y0 as i64);
+        let da1 = a[1] - a[0];
+        let da2 = a[2] - a[0];
+        let area = b.area2;
+        let num_x = cross_shifted(da1, e2.1, da2, e1.1);
+        let num_y = cross_shifted(da2, e1.0, da1, e2.0);
+        let (gx, gy) = match (num_x, num_y) {
+            (Some(nx), Some(ny)) => (div_round(nx, area), div_round(ny, area)),
+            _ => {
+                let wide = |p: i64, q: i64, r: i64, s: i64| {
+                    ((p as i128 * q as i128) - (r as i128 * s as i128)) << EXTRA
+                };
+                (
+                    div_round_wide(wide(da1, e2.1, da2, e1.1), area),
+                    div_round_wide(wide(da2, e1.0, da1, e2.0), area),
+                )
+            }
         };
         Self {
             base: a[0] << EXTRA,
-            gx: div(da1 * e2.1 - da2 * e1.1),
-            gy: div(da2 * e1.0 - da1 * e2.0),
+            gx,
+            gy,
             x0,
             y0,
         }
@@ -102,4 +109,30 @@ impl Gradient {
         let step = if n > 0 { (e - s) / n } else { 0 };
         (s as i32, step as i32)
     }
+}
+
+/// `(p·q − r·s) << EXTRA` if it fits in i64.
+#[inline]
+fn cross_shifted(p: i64, q: i64, r: i64, s: i64) -> Option<i64> {
+    let v = p.checked_mul(q)?.checked_sub(r.checked_mul(s)?)?;
+    // Keep one bit of headroom for the rounding offset in `div_round`.
+    (v.unsigned_abs() < 1 << (62 - EXTRA)).then_some(v << EXTRA)
+}
+
+/// `num / den` rounded to nearest, ties away from zero; `den ≠ 0`.
+#[inline]
+pub(super) fn div_round(num: i64, den: i64) -> i64 {
+    let half = (den / 2).abs();
+    // Ties away from zero: sign(num/den)·(|num| + |den|/2) / |den|, and
+    // truncating division keeps the sign. |num| < 2^62 and
+    // |half| < 2^62, so the sum does not overflow.
+    (num + num.signum() * half) / den
+}
+
+/// As [`div_round`] in i128, saturated to i64.
+pub(super) fn div_round_wide(num: i128, den: i64) -> i64 {
+    let den = den as i128;
+    let half = (den / 2).abs();
+    let q = (num + num.signum() * half) / den;
+    q.clamp(i64::MIN as i128, i64::MAX as i128) as i64
 }

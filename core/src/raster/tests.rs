@@ -537,3 +537,29 @@ proptest! {
         fill_polygon(&mut u, &mut NoDepth, &Flat('#'), &sm);
     }
 }
+
+#[test]
+fn rounded_division_ties_away_from_zero() {
+    use super::gradient::div_round;
+    assert_eq!(div_round(5, 2), 3);
+    assert_eq!(div_round(-5, 2), -3);
+    assert_eq!(div_round(5, -2), -3);
+    assert_eq!(div_round(-5, -2), 3);
+    assert_eq!(div_round(7, 3), 2);
+    assert_eq!(div_round(-7, 3), -2);
+    assert_eq!(div_round(0, -3), 0);
+}
+
+proptest! {
+    #[test]
+    fn narrow_and_wide_division_agree(num in -(1i64 << 61)..(1i64 << 61), den in any::<i64>()) {
+        use super::gradient::{div_round, div_round_wide};
+        let den = if den == 0 { 1 } else { den >> 3 | 1 };
+        prop_assert_eq!(div_round(num, den), div_round_wide(num as i128, den));
+        // Against exact rational rounding.
+        let q = div_round(num, den) as i128;
+        let (n, d) = (num as i128, den as i128);
+        // |n/d − q| ≤ ½  ⇔  |n − q·d| ≤ |d|/2
+        prop_assert!(2 * (n - q * d).abs() <= d.abs());
+    }
+}

@@ -35,8 +35,8 @@ pub use clip::{
     ClipError, ClippedPolygon, Frustum, MAX_CLIPPED_VERTICES, MAX_INPUT_VERTICES, MAX_PLANES, Plane,
 };
 pub use vertex::{
-    Attributes, Intensity, IntensityUv, Uv, Varyings, Vertex, VertexXyz, VertexXyzI, VertexXyzIUv,
-    VertexXyzUv,
+    Attributes, Intensity, IntensityUv, Uv, UvPerspective, Varyings, Vertex, VertexXyz, VertexXyzI,
+    VertexXyzIUv, VertexXyzUv, VertexXyzUvP,
 };
 
 use crate::camera::{Projection, ProjectionKind};
@@ -237,9 +237,13 @@ impl<S: Scalar> Pipeline<S> {
         let (p, depth) = self.projection.project(v.pos)?;
         let x = p.x.to_subpixel(SUBPIXEL_BITS)?;
         let y = p.y.to_subpixel(SUBPIXEL_BITS)?;
-        let frac = match self.projection.kind {
-            ProjectionKind::Perspective { .. } => (self.depth_a - depth) * self.depth_scale,
-            ProjectionKind::Parallel { .. } => (depth - self.depth_a) * self.depth_scale,
+        let (frac, q) = match self.projection.kind {
+            // depth_a = 1/near, so near/z = depth / depth_a.
+            ProjectionKind::Perspective { .. } => (
+                (self.depth_a - depth) * self.depth_scale,
+                depth / self.depth_a,
+            ),
+            ProjectionKind::Parallel { .. } => ((depth - self.depth_a) * self.depth_scale, S::ONE),
         };
         // Clipping keeps the fraction in [0, 1] up to rounding.
         let key = frac
@@ -247,7 +251,7 @@ impl<S: Scalar> Pipeline<S> {
             .to_subpixel(16)
             .unwrap_or(0)
             .clamp(0, u16::MAX as i32) as u16;
-        Some(ScreenVertex::new(x, y, key, v.attr.to_varyings()))
+        Some(ScreenVertex::new(x, y, key, v.attr.to_varyings(q)))
     }
 
     /// Clips, projects and scan-converts one convex view-space polygon.

@@ -406,6 +406,108 @@ fn bands_match_full_frame<S: Scalar>() {
     }
 }
 
+/// A floor `y = 1`, `x ∈ [−2, 2]`, `z ∈ [¼, 8]` (crossing the near plane
+/// at ½) textured with u = 2x + 4, v = 2z, through a 32×24 perspective
+/// pipeline (focus 12). `make` builds the vertex attributes from (u, v).
+fn render_floor<S: Scalar, A, Sh, const K: usize>(
+    sh: &Sh,
+    make: impl Fn(S, S) -> A,
+) -> [u16; 32 * 24]
+where
+    A: Varyings<S, K>,
+    Sh: crate::raster::SpanShader<K, Color = u16>,
+{
+    use crate::target::Framebuffer;
+    let p = Pipeline::new(
+        Projection::perspective(S::from_i32(12), 32, 24),
+        32,
+        24,
+        S::HALF,
+        S::from_i32(64),
+        S::from_i32(4),
+    )
+    .unwrap();
+    let mut buf = [u16::MAX; 32 * 24];
+    let mut fb = Framebuffer::new(&mut buf, 32, 24, 32).unwrap();
+    let q: Vec<_> = [(-2.0, 0.25), (2.0, 0.25), (2.0, 8.0), (-2.0, 8.0)]
+        .iter()
+        .map(|&(x, z)| {
+            Vertex::new(
+                v3::<S>(x, 1.0, z),
+                make(S::from_f64(2.0 * x + 4.0), S::from_f64(2.0 * z)),
+            )
+        })
+        .collect();
+    p.draw_polygon(&mut fb, &mut NoDepth, sh, &q).unwrap();
+    buf
+}
+
+/// Pixels whose texel differs from the exact one found by casting a ray
+/// in f64 through the pixel centre, ignoring pixels within `margin`
+/// texels of a texel boundary: (mismatches, drawn).
+fn floor_mismatches(buf: &[u16; 32 * 24], margin: f64) -> (usize, usize) {
+    let (cx, cy, f) = (16.0, 12.0, 12.0);
+    let (mut bad, mut drawn) = (0, 0);
+    for j in 0..24 {
+        for i in 0..32 {
+            let got = buf[j * 32 + i];
+            if got == u16::MAX {
+                continue;
+            }
+            drawn += 1;
+            let (px, py) = (i as f64 + 0.5, j as f64 + 0.5);
+            let z = f / (py - cy);
+            let x = z * (px - cx) / f;
+            let (u, v) = (2.0 * x + 4.0, 2.0 * z);
+            let near_edge = |t: f64| (t - t.round()).abs() < margin;
+            if near_edge(u) || near_edge(v) {
+                continue;
+            }
+            let want =
+                ((v.floor() as i64).rem_euclid(16) * 8 + (u.floor() as i64).rem_euclid(8)) as u16;
+            if got != want {
+                bad += 1;
+            }
+        }
+    }
+    (bad, drawn)
+}
+
+fn perspective_texture_matches_ray_cast<S: Scalar>() {
+    use crate::raster::{AffineTexture, PerspectiveTexture, RepeatPow2, Texture};
+    // Texel (i, j) of the 8×16 texture holds j·8 + i.
+    let data: [u16; 128] = core::array::from_fn(|k| k as u16);
+    let tex = Texture::new(&data, 8, 16, 8).unwrap();
+    // The margin covers the rounding of 28.4 vertices and of q; it is
+    // wider for I16F16, whose 1/z has only 16 fractional bits.
+    let margin = if S::IS_FLOAT { 0.02 } else { 0.1 };
+    let persp = |u, v| UvPerspective { u, v };
+    let exact = PerspectiveTexture::<u16, RepeatPow2, 1>::new(tex).unwrap();
+    let (bad, drawn) = floor_mismatches(&render_floor::<S, _, _, 3>(&exact, persp), margin);
+    assert!(drawn > 150, "{drawn}");
+    assert_eq!(bad, 0, "exact perspective: {bad} of {drawn}");
+    // Subdivided runs: exact at run ends, affine between; the error stays
+    // small on this floor.
+    let sub8 = PerspectiveTexture::<u16, RepeatPow2, 8>::new(tex).unwrap();
+    let sub16 = PerspectiveTexture::<u16, RepeatPow2, 16>::new(tex).unwrap();
+    let sub32 = PerspectiveTexture::<u16, RepeatPow2, 32>::new(tex).unwrap();
+    for buf in [
+        render_floor::<S, _, _, 3>(&sub8, persp),
+        render_floor::<S, _, _, 3>(&sub16, persp),
+        render_floor::<S, _, _, 3>(&sub32, persp),
+    ] {
+        let (bad, drawn) = floor_mismatches(&buf, margin);
+        assert!(bad * 20 <= drawn, "subdivided: {bad} of {drawn}");
+    }
+    // Affine mapping is visibly wrong on a floor seen in perspective.
+    let affine = AffineTexture::<u16, RepeatPow2>::new(tex).unwrap();
+    let (bad, drawn) = floor_mismatches(
+        &render_floor::<S, _, _, 2>(&affine, |u, v| Uv { u, v }),
+        margin,
+    );
+    assert!(bad * 4 > drawn, "affine should swim: {bad} of {drawn}");
+}
+
 macro_rules! pipeline_tests {
     ($m:ident, $S:ty) => {
         mod $m {
@@ -441,6 +543,10 @@ macro_rules! pipeline_tests {
             #[test]
             fn bands_match_full_frame() {
                 super::bands_match_full_frame::<$S>();
+            }
+            #[test]
+            fn perspective_texture_matches_ray_cast() {
+                super::perspective_texture_matches_ray_cast::<$S>();
             }
             #[test]
             fn bad_input() {

@@ -23,10 +23,12 @@ pub trait Attributes<S: Scalar>: Copy + Debug {
 /// Attributes that map to the scan converter's `K` varyings (16.16 fixed
 /// point, see [`SpanShader`](crate::raster::SpanShader)).
 pub trait Varyings<S: Scalar, const K: usize>: Attributes<S> {
-    /// The varyings for this vertex. Values that do not convert (NaN, out
-    /// of range) become 0 or saturate; the scan converter clamps to the
-    /// shader's range.
-    fn to_varyings(&self) -> [i32; K];
+    /// The varyings for this vertex. `q` is `near/z` for perspective
+    /// projection (in (0, 1] after clipping) and 1 for parallel; only
+    /// perspective-correct formats use it. Values that do not convert
+    /// (NaN, out of range) become 0 or saturate; the scan converter clamps
+    /// to the shader's range.
+    fn to_varyings(&self, q: S) -> [i32; K];
 }
 
 /// A view-space vertex: position (x right, y down, z forward) and
@@ -55,6 +57,8 @@ pub type VertexXyzI<S> = Vertex<S, Intensity<S>>;
 pub type VertexXyzUv<S> = Vertex<S, Uv<S>>;
 /// Position, intensity and texture coordinates.
 pub type VertexXyzIUv<S> = Vertex<S, IntensityUv<S>>;
+/// Position and texture coordinates for perspective-correct mapping.
+pub type VertexXyzUvP<S> = Vertex<S, UvPerspective<S>>;
 
 /// Light intensity in `[0, 1]`, mapped to the varying 0..=255 (16.16).
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
@@ -63,6 +67,18 @@ pub struct Intensity<S>(pub S);
 /// Texture coordinates in texels, mapped to 16.16 varyings.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct Uv<S> {
+    /// Horizontal texel coordinate.
+    pub u: S,
+    /// Vertical texel coordinate.
+    pub v: S,
+}
+
+/// Texture coordinates in texels for perspective-correct mapping with
+/// [`PerspectiveTexture`](crate::raster::PerspectiveTexture): the varyings
+/// are `u·q`, `v·q` (16.16) and `q = near/z` (8.24), which are linear in
+/// screen space.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct UvPerspective<S> {
     /// Horizontal texel coordinate.
     pub u: S,
     /// Vertical texel coordinate.
@@ -112,7 +128,7 @@ impl<S: Scalar> Attributes<S> for () {
 }
 
 impl<S: Scalar> Varyings<S, 0> for () {
-    fn to_varyings(&self) -> [i32; 0] {
+    fn to_varyings(&self, _q: S) -> [i32; 0] {
         []
     }
 }
@@ -128,7 +144,7 @@ impl<S: Scalar> Attributes<S> for Intensity<S> {
 }
 
 impl<S: Scalar> Varyings<S, 1> for Intensity<S> {
-    fn to_varyings(&self) -> [i32; 1] {
+    fn to_varyings(&self, _q: S) -> [i32; 1] {
         [intensity_varying(self.0)]
     }
 }
@@ -147,8 +163,32 @@ impl<S: Scalar> Attributes<S> for Uv<S> {
 }
 
 impl<S: Scalar> Varyings<S, 2> for Uv<S> {
-    fn to_varyings(&self) -> [i32; 2] {
+    fn to_varyings(&self, _q: S) -> [i32; 2] {
         [texel_varying(self.u), texel_varying(self.v)]
+    }
+}
+
+impl<S: Scalar> Attributes<S> for UvPerspective<S> {
+    #[inline]
+    fn lerp(self, other: Self, t: S) -> Self {
+        Self {
+            u: lerp(self.u, other.u, t),
+            v: lerp(self.v, other.v, t),
+        }
+    }
+    fn is_finite(&self) -> bool {
+        self.u.is_finite() && self.v.is_finite()
+    }
+}
+
+impl<S: Scalar> Varyings<S, 3> for UvPerspective<S> {
+    fn to_varyings(&self, q: S) -> [i32; 3] {
+        let q = q.clamp_to(S::ZERO, S::ONE);
+        let qv = q
+            .to_subpixel(crate::raster::PERSPECTIVE_Q_BITS)
+            .unwrap_or(1)
+            .max(1);
+        [texel_varying(self.u * q), texel_varying(self.v * q), qv]
     }
 }
 
@@ -167,7 +207,7 @@ impl<S: Scalar> Attributes<S> for IntensityUv<S> {
 }
 
 impl<S: Scalar> Varyings<S, 3> for IntensityUv<S> {
-    fn to_varyings(&self) -> [i32; 3] {
+    fn to_varyings(&self, _q: S) -> [i32; 3] {
         [
             intensity_varying(self.i),
             texel_varying(self.u),

@@ -40,9 +40,13 @@ mod depth;
 mod edge;
 mod gradient;
 mod shader;
+mod texture;
 
 pub use depth::{DEPTH_FRAC_BITS, DepthBuffer, DepthKey, DepthTest, NoDepth};
 pub use shader::{Flat, Gouraud, Shade, SpanShader, VARYING_FRAC_BITS};
+pub use texture::{
+    AffineTexture, Clamp, PERSPECTIVE_Q_BITS, PerspectiveTexture, Repeat, RepeatPow2, Texture, Wrap,
+};
 
 use crate::target::Target;
 use edge::{EdgeStepper, first_center};
@@ -277,13 +281,7 @@ where
                 for k in 0..K {
                     v[k] = v[k].wrapping_add(step[k].wrapping_mul(off as i32));
                 }
-                target.fill_with(y, x + off as i32, run, || {
-                    let c = shader.color(&v);
-                    for k in 0..K {
-                        v[k] = v[k].wrapping_add(step[k]);
-                    }
-                    c
-                });
+                shader.shade_run(target, y, x + off as i32, run, v, step);
             });
         }
     }

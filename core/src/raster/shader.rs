@@ -4,6 +4,7 @@
 //! 16.16 fixed point, set up per span and stepped by one integer add per
 //! pixel. Per-pixel work is [`SpanShader::color`] plus those adds.
 
+use crate::target::Target;
 use embedded_graphics::pixelcolor::{Gray8, GrayColor, Rgb565, RgbColor};
 
 /// Fractional bits of the varyings handed to shaders (16.16).
@@ -29,6 +30,31 @@ pub trait SpanShader<const K: usize> {
     /// The colour for one pixel with varyings `v` (16.16, within
     /// [`Self::RANGE`]).
     fn color(&self, v: &[i32; K]) -> Self::Color;
+
+    /// Writes one run of `len` pixels starting at column `x` of row `y`,
+    /// whose first pixel has varyings `start` and each next pixel `step`
+    /// more. The default calls [`Self::color`] per pixel; shaders that
+    /// need state along the run (subdivided perspective texturing)
+    /// override it.
+    #[inline]
+    fn shade_run<T: Target<Color = Self::Color>>(
+        &self,
+        target: &mut T,
+        y: i32,
+        x: i32,
+        len: u32,
+        start: [i32; K],
+        step: [i32; K],
+    ) {
+        let mut v = start;
+        target.fill_with(y, x, len, || {
+            let c = self.color(&v);
+            for (vk, sk) in v.iter_mut().zip(step) {
+                *vk = vk.wrapping_add(sk);
+            }
+            c
+        });
+    }
 }
 
 /// One colour for the whole polygon. Ignores any varyings, so it works

@@ -563,3 +563,98 @@ proptest! {
         prop_assert!(2 * (n - q * d).abs() <= d.abs());
     }
 }
+
+fn checker() -> [char; 16] {
+    // 4×4 texels: row j, column i is a letter from "abcd" + row offset.
+    core::array::from_fn(|k| char::from(b'a' + (k % 4) as u8 + 4 * (k / 4) as u8))
+}
+
+#[test]
+fn texture_validates_and_wraps() {
+    let t = [1u8, 2, 3, 4, 5, 6];
+    assert_eq!(
+        Texture::new(&t[..0], 0, 1, 0).unwrap_err(),
+        crate::target::BufferError::BadTextureSize
+    );
+    assert!(Texture::new(&t, 3, 3, 3).is_err());
+    let tex = Texture::new(&t, 3, 2, 3).unwrap();
+    assert_eq!(tex.sample::<Repeat>(-1, 0), 3);
+    assert_eq!(tex.sample::<Repeat>(4, 3), 5);
+    assert_eq!(tex.sample::<Clamp>(-7, 9), 4);
+    assert_eq!(tex.sample::<Clamp>(99, -9), 3);
+    // RepeatPow2 refuses a 3-wide texture but still samples in bounds.
+    assert!(AffineTexture::<u8, RepeatPow2>::new(tex).is_none());
+    assert!(AffineTexture::<u8, Repeat>::new(tex).is_some());
+    for i in -9..9 {
+        let _ = tex.sample::<RepeatPow2>(i, i * 7);
+    }
+    let t4 = [0u8; 8];
+    let tex = Texture::new(&t4, 4, 2, 4).unwrap();
+    assert!(AffineTexture::<u8, RepeatPow2>::new(tex).is_some());
+    assert_eq!(RepeatPow2::wrap(-1, 4), 3);
+    assert_eq!(RepeatPow2::wrap(9, 4), 1);
+}
+
+#[test]
+fn affine_texture_pattern() {
+    // u, v from 0 to 8 over an 8×8 square: the 4×4 texture tiles twice,
+    // each texel 1×1 pixel; with Clamp the second tile repeats the edge.
+    let tex_data = checker();
+    let tex = Texture::new(&tex_data, 4, 4, 4).unwrap();
+    let v = |x: f64, y: f64| ScreenVertex::new(sp(x), sp(y), 0, [sp(x) << 12, sp(y) << 12]);
+    let sq = [v(0.0, 0.0), v(8.0, 0.0), v(8.0, 8.0), v(0.0, 8.0)];
+    let mut t = MockTarget::new(8, 8);
+    let sh = AffineTexture::<char, RepeatPow2>::new(tex).unwrap();
+    fill_polygon(&mut t, &mut NoDepth, &sh, &sq);
+    t.assert_pattern(&[
+        "abcdabcd", //
+        "efghefgh", //
+        "ijklijkl", //
+        "mnopmnop", //
+        "abcdabcd", //
+        "efghefgh", //
+        "ijklijkl", //
+        "mnopmnop", //
+    ]);
+    let mut t = MockTarget::new(8, 8);
+    let sh = AffineTexture::<char, Clamp>::new(tex).unwrap();
+    fill_polygon(&mut t, &mut NoDepth, &sh, &sq);
+    t.assert_pattern(&[
+        "abcddddd", //
+        "efghhhhh", //
+        "ijklllll", //
+        "mnoppppp", //
+        "mnoppppp", //
+        "mnoppppp", //
+        "mnoppppp", //
+        "mnoppppp", //
+    ]);
+}
+
+#[test]
+fn perspective_texture_with_constant_depth_equals_affine() {
+    // q constant (½): (u·q, v·q, q) must give the same texels as (u, v).
+    let tex_data = checker();
+    let tex = Texture::new(&tex_data, 4, 4, 4).unwrap();
+    let q = 1 << (PERSPECTIVE_Q_BITS - 1);
+    let v = |x: f64, y: f64| ScreenVertex::new(sp(x), sp(y), 0, [sp(x) << 11, sp(y) << 11, q]);
+    let sq = [v(0.0, 0.0), v(8.0, 0.0), v(8.0, 8.0), v(0.0, 8.0)];
+    let mut exact = MockTarget::new(8, 8);
+    let sh = PerspectiveTexture::<char, RepeatPow2, 1>::new(tex).unwrap();
+    fill_polygon(&mut exact, &mut NoDepth, &sh, &sq);
+    let mut sub = MockTarget::new(8, 8);
+    let sh = PerspectiveTexture::<char, RepeatPow2, 3>::new(tex).unwrap();
+    fill_polygon(&mut sub, &mut NoDepth, &sh, &sq);
+    for t in [&exact, &sub] {
+        t.assert_pattern(&[
+            "abcdabcd", //
+            "efghefgh", //
+            "ijklijkl", //
+            "mnopmnop", //
+            "abcdabcd", //
+            "efghefgh", //
+            "ijklijkl", //
+            "mnopmnop", //
+        ]);
+    }
+}

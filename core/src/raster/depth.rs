@@ -147,25 +147,55 @@ impl DepthTest for DepthBuffer<'_> {
             return;
         };
         let mut z = z.wrapping_add(dz.wrapping_mul(skip as i32));
-        let mut run: Option<u32> = None;
-        let mut i = skip;
-        for d in row.iter_mut() {
-            // The span set-up keeps z within 0..=65535·256+255, so the
-            // shift gives the key exactly.
-            let key = (z >> DEPTH_FRAC_BITS) as DepthKey;
-            if key < *d {
-                *d = key;
-                if run.is_none() {
-                    run = Some(i);
-                }
-            } else if let Some(s) = run.take() {
-                pass(s, i - s);
+        // Two tight loops (skip failing pixels, then store passing ones)
+        // instead of one loop with run state, each out of line so that on
+        // Cortex-M0 its few registers are not taken by the caller's
+        // state: this is the per-pixel cost of depth testing.
+        let n = row.len();
+        let mut i = 0;
+        while i < n {
+            let (failed, z1) = skip_failing(row.get(i..).unwrap_or(&[]), z, dz);
+            i += failed;
+            let (passed, z2) = store_passing(row.get_mut(i..).unwrap_or(&mut []), z1, dz);
+            z = z2;
+            if passed > 0 {
+                // i + passed ≤ n ≤ len, so these fit in u32.
+                pass(skip + i as u32, passed as u32);
             }
-            z = z.wrapping_add(dz);
-            i += 1;
-        }
-        if let Some(s) = run {
-            pass(s, i - s);
+            i += passed;
         }
     }
+}
+
+/// Counts leading pixels that fail (key ≥ stored); returns the count and
+/// the z after them. The span set-up keeps z within
+/// 0..=65535·256+255, so the shift gives the key exactly.
+#[inline(never)]
+fn skip_failing(row: &[DepthKey], mut z: i32, dz: i32) -> (usize, i32) {
+    let mut n = 0;
+    for &d in row {
+        if ((z >> DEPTH_FRAC_BITS) as DepthKey) < d {
+            break;
+        }
+        z = z.wrapping_add(dz);
+        n += 1;
+    }
+    (n, z)
+}
+
+/// Stores leading keys that pass (key < stored); returns the count and
+/// the z after them.
+#[inline(never)]
+fn store_passing(row: &mut [DepthKey], mut z: i32, dz: i32) -> (usize, i32) {
+    let mut n = 0;
+    for d in row {
+        let key = (z >> DEPTH_FRAC_BITS) as DepthKey;
+        if key >= *d {
+            break;
+        }
+        *d = key;
+        z = z.wrapping_add(dz);
+        n += 1;
+    }
+    (n, z)
 }

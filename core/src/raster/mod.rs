@@ -19,6 +19,13 @@
 //! planes fitted once per polygon and evaluated once per span (see the
 //! `gradient` module); per pixel there is one add per quantity.
 //!
+//! | piece | choices (all compile-time) |
+//! |---|---|
+//! | shader ([`SpanShader`]) | [`Flat`], [`Gouraud`] (colour ramp), [`AffineTexture`], [`PerspectiveTexture`] (exact, or runs of N) |
+//! | wrap ([`Wrap`]) | [`Repeat`], [`RepeatPow2`], [`Clamp`] |
+//! | depth ([`DepthTest`]) | [`NoDepth`] (free), [`DepthBuffer`] (u16 keys, less-than) |
+//! | target | anything implementing [`Target`] |
+//!
 //! # Limits
 //!
 //! - Vertex coordinates must lie within ±[`COORD_LIMIT`] (2^28 in 28.4,
@@ -72,7 +79,7 @@ pub struct ScreenVertex<const K: usize> {
 }
 
 impl<const K: usize> ScreenVertex<K> {
-    /// A vertex at whole-pixel-free 28.4 coordinates with depth and
+    /// A vertex at 28.4 coordinates (pixels × 16) with a depth key and
     /// varyings.
     #[must_use]
     pub const fn new(x: i32, y: i32, z: DepthKey, v: [i32; K]) -> Self {

@@ -658,3 +658,49 @@ fn perspective_texture_with_constant_depth_equals_affine() {
         ]);
     }
 }
+
+proptest! {
+    #[test]
+    fn depth_runs_match_per_pixel_reference(
+        stored in proptest::collection::vec(any::<u16>(), 1..40),
+        x in -10i32..50, len in 0u32..60,
+        z in 0i32..(65536 << 8), dz in -(1i32 << 16)..(1 << 16),
+    ) {
+        let w = stored.len();
+        let mut buf = stored.clone();
+        let mut d = DepthBuffer::new(&mut buf, w as u16, 1, w, 0).unwrap();
+        let mut runs = Vec::new();
+        d.test_span(0, x, len, z, dz, |off, n| runs.push((off, n)));
+        // Per pixel: pixel x+i has key (z + i·dz) >> 8 and passes if less
+        // than the stored key; inside the buffer only.
+        let mut want = stored.clone();
+        let mut pass = vec![false; len as usize];
+        for i in 0..len as i64 {
+            let col = x as i64 + i;
+            if col < 0 || col >= w as i64 {
+                continue;
+            }
+            let key = ((z as i64 + i * dz as i64) >> 8) as u16;
+            let c = col as usize;
+            if key < want[c] {
+                want[c] = key;
+                pass[i as usize] = true;
+            }
+        }
+        let mut got_pass = vec![false; len as usize];
+        let mut last_end = None;
+        for &(off, n) in &runs {
+            prop_assert!(n > 0);
+            // Maximal, ordered runs.
+            if let Some(e) = last_end {
+                prop_assert!(off > e);
+            }
+            for k in off..off + n {
+                got_pass[k as usize] = true;
+            }
+            last_end = Some(off + n);
+        }
+        prop_assert_eq!(got_pass, pass);
+        prop_assert_eq!(buf, want);
+    }
+}

@@ -102,6 +102,33 @@ impl core::error::Error for DrawError {
 }
 
 /// Projection, clip volume and depth mapping for one viewport.
+///
+/// # Examples
+///
+/// A Gouraud-shaded triangle in view space, half behind the near plane,
+/// drawn with a depth buffer into a 240×240 Rgb565 frame:
+///
+/// ```
+/// use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+/// use sightline::camera::Projection;
+/// use sightline::math::Vec3;
+/// use sightline::pipeline::{Intensity, Pipeline, Vertex};
+/// use sightline::raster::{DepthBuffer, Gouraud, Shade};
+/// use sightline::target::Framebuffer;
+///
+/// let mut pixels = [Rgb565::BLACK; 240 * 240];
+/// let mut keys = [u16::MAX; 240 * 240];
+/// let mut fb = Framebuffer::new(&mut pixels, 240, 240, 240).unwrap();
+/// let mut depth = DepthBuffer::new(&mut keys, 240, 240, 240, 0).unwrap();
+///
+/// let pipe = Pipeline::new(Projection::perspective(200.0f32, 240, 240), 240, 240, 0.1, 100.0, 16.0)
+///     .unwrap();
+/// let ramp = Rgb565::GREEN.ramp();
+/// let v = |x, y, z, i| Vertex::new(Vec3::new(x, y, z), Intensity(i));
+/// let tri = [v(-1.0, 0.5, -1.0, 0.0), v(1.0, 0.5, 3.0, 1.0), v(-1.0, -0.5, 3.0, 0.5)];
+/// pipe.draw_polygon(&mut fb, &mut depth, &Gouraud::new(&ramp), &tri).unwrap();
+/// assert!(fb.as_slice().iter().any(|&p| p != Rgb565::BLACK));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pipeline<S> {
     projection: Projection<S>,

@@ -162,6 +162,28 @@ impl<'v, const K: usize> Chain<'v, K> {
 /// triangle from vertex 0 with the largest area); for a triangle, and for
 /// any polygon whose values are affine over it (e.g. a clipped triangle),
 /// that is exact interpolation.
+///
+/// # Examples
+///
+/// ```
+/// use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+/// use sightline::raster::{FillOutcome, Flat, NoDepth, ScreenVertex, fill_polygon};
+/// use sightline::target::Framebuffer;
+///
+/// let mut pixels = [Rgb565::BLACK; 8 * 4];
+/// let mut fb = Framebuffer::new(&mut pixels, 8, 4, 8).unwrap();
+/// // Pixels × 16: a 4×4 square from (2, 0) to (6, 4).
+/// let v = |x: i32, y: i32| ScreenVertex::new(x * 16, y * 16, 0, []);
+/// let square = [v(2, 0), v(6, 0), v(6, 4), v(2, 4)];
+/// let out = fill_polygon(&mut fb, &mut NoDepth, &Flat(Rgb565::RED), &square);
+/// assert_eq!(out, FillOutcome::Drawn);
+/// assert_eq!(fb.pixel(2, 0), Some(Rgb565::RED));
+/// assert_eq!(fb.pixel(6, 0), Some(Rgb565::BLACK)); // right edge excluded
+/// ```
+///
+/// # Panics
+///
+/// Never.
 pub fn fill_polygon<T, Z, Sh, const K: usize>(
     target: &mut T,
     depth: &mut Z,

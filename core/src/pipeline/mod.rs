@@ -101,6 +101,23 @@ impl core::error::Error for DrawError {
     }
 }
 
+/// Which faces [`Pipeline::draw_polygon`] drops.
+///
+/// A face is *front-facing* when its vertices run counter-clockwise as
+/// seen from the eye (the OBJ and glTF convention, right-hand rule about
+/// the outward normal). On screen, with y down, that is a negative
+/// shoelace area.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Cull {
+    /// Draw both sides.
+    #[default]
+    None,
+    /// Drop faces turned away from the eye (closed meshes).
+    Back,
+    /// Drop faces turned towards the eye.
+    Front,
+}
+
 /// Projection, clip volume and depth mapping for one viewport.
 ///
 /// # Examples
@@ -137,6 +154,7 @@ pub struct Pipeline<S> {
     /// or `(depth − a)·scale` (parallel, depth = z).
     depth_a: S,
     depth_scale: S,
+    cull: Cull,
 }
 
 impl<S: Scalar> Pipeline<S> {
@@ -238,7 +256,15 @@ impl<S: Scalar> Pipeline<S> {
             frustum,
             depth_a,
             depth_scale,
+            cull: Cull::None,
         })
+    }
+
+    /// The same pipeline with face culling `cull` (default [`Cull::None`]).
+    #[must_use]
+    pub fn with_cull(mut self, cull: Cull) -> Self {
+        self.cull = cull;
+        self
     }
 
     /// The clip volume.
@@ -309,6 +335,21 @@ impl<S: Scalar> Pipeline<S> {
             screen
                 .push(sv)
                 .map_err(|_| DrawError::Clip(ClipError::TooManyVertices))?;
+        }
+        if let (true, Some(&last)) = (self.cull != Cull::None, screen.last()) {
+            // Culling on the snapped screen polygon decides exactly what the
+            // scan converter would draw. i128: coordinates may reach 2^31
+            // here (the scan converter rejects beyond 2^28 later).
+            let mut area2: i128 = 0;
+            let mut prev = last;
+            for &v in &screen {
+                area2 += prev.x as i128 * v.y as i128 - prev.y as i128 * v.x as i128;
+                prev = v;
+            }
+            let front = area2 < 0;
+            if (self.cull == Cull::Back && !front) || (self.cull == Cull::Front && front) {
+                return Ok(FillOutcome::Culled);
+            }
         }
         Ok(fill_polygon(target, depth, shader, &screen))
     }

@@ -1,6 +1,6 @@
 use super::*;
 use crate::camera::Projection;
-use crate::raster::{DepthBuffer, Flat, Gouraud, NoDepth};
+use crate::raster::{DepthBuffer, FillOutcome, Flat, Gouraud, NoDepth};
 use crate::scalar::{I16F16, Scalar};
 use crate::testutil::MockTarget;
 use proptest::prelude::*;
@@ -578,6 +578,37 @@ fn clipped_mesh_has_no_overdraw<S: Scalar>(
     true
 }
 
+fn culling<S: Scalar>() {
+    // Seen from the eye (looking along +z, y down), a→b→c runs
+    // counter-clockwise: down the left side, then right along the bottom.
+    // With y down that is a negative screen area: front-facing.
+    let front = [
+        Vertex::new(v3::<S>(-0.5, -0.5, 2.0), ()),
+        Vertex::new(v3(-0.5, 0.5, 2.0), ()),
+        Vertex::new(v3(0.5, 0.5, 2.0), ()),
+    ];
+    let back = [front[0], front[2], front[1]];
+    let p = pipe::<S>();
+    for (cull, f, b) in [
+        (Cull::None, true, true),
+        (Cull::Back, true, false),
+        (Cull::Front, false, true),
+    ] {
+        let q = p.with_cull(cull);
+        let mut t = MockTarget::new(12, 8);
+        t.allow_overdraw = true;
+        let rf = q
+            .draw_polygon(&mut t, &mut NoDepth, &Flat('#'), &front)
+            .unwrap();
+        let rb = q
+            .draw_polygon(&mut t, &mut NoDepth, &Flat('#'), &back)
+            .unwrap();
+        assert_eq!(rf == FillOutcome::Drawn, f, "{cull:?}");
+        assert_eq!(rb == FillOutcome::Drawn, b, "{cull:?}");
+        assert_eq!(rf == FillOutcome::Culled, !f);
+    }
+}
+
 macro_rules! pipeline_tests {
     ($m:ident, $S:ty) => {
         mod $m {
@@ -617,6 +648,10 @@ macro_rules! pipeline_tests {
             #[test]
             fn perspective_texture_matches_ray_cast() {
                 super::perspective_texture_matches_ray_cast::<$S>();
+            }
+            #[test]
+            fn culling() {
+                super::culling::<$S>();
             }
             #[test]
             fn bad_input() {

@@ -97,6 +97,9 @@ pub enum FillOutcome {
     Empty,
     /// A vertex lies outside ±[`COORD_LIMIT`]; nothing was drawn.
     Rejected,
+    /// Dropped by face culling (only from
+    /// [`Pipeline::draw_polygon`](crate::pipeline::Pipeline::draw_polygon)).
+    Culled,
 }
 
 /// One chain of edges from the top vertex to the bottom vertex.

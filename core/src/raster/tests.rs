@@ -704,3 +704,38 @@ proptest! {
         prop_assert_eq!(buf, want);
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    /// Vertices on the half-pixel lattice (multiples of 8 in 28.4), so
+    /// that edges and vertices often pass exactly through pixel centres:
+    /// the ties the top-left rule decides. Fans around a lattice point
+    /// also check that the ties partition.
+    #[test]
+    fn lattice_polygons_match_oracle(
+        pts in proptest::collection::vec((-4i32..40, -4i32..40), 3..7),
+    ) {
+        let mut p: Vec<(i64, i64)> = pts.iter().map(|&(x, y)| (8 * x as i64, 8 * y as i64)).collect();
+        let hull: Vec<ScreenVertex<0>> = convex_hull(&mut p)
+            .into_iter()
+            .map(|(x, y)| ScreenVertex::new(x as i32, y as i32, 0, []))
+            .collect();
+        check_against_oracle(18, 18, core::slice::from_ref(&hull));
+        // Split the hull into a fan from its first vertex: every pixel
+        // of the hull exactly once.
+        if hull.len() >= 3 {
+            let fan: Vec<Vec<ScreenVertex<0>>> = (1..hull.len() - 1)
+                .map(|k| vec![hull[0], hull[k], hull[k + 1]])
+                .collect();
+            check_against_oracle(18, 18, &fan);
+            let mut whole = MockTarget::new(18, 18);
+            fill_polygon(&mut whole, &mut NoDepth, &Flat('#'), &hull);
+            let mut parts = MockTarget::new(18, 18);
+            for t in &fan {
+                fill_polygon(&mut parts, &mut NoDepth, &Flat('#'), t);
+            }
+            prop_assert_eq!(whole.px, parts.px);
+        }
+    }
+}

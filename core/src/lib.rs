@@ -64,7 +64,7 @@ pub mod raster;
 pub mod scalar;
 pub mod solve;
 pub mod target;
+pub mod transform;
 
 #[cfg(test)]
 mod testutil;
-pub mod transform;

@@ -48,6 +48,11 @@ use crate::scalar::Scalar;
 use crate::target::Target;
 use core::fmt;
 
+/// A clipped, projected polygon ready for
+/// [`fill_polygon`](crate::raster::fill_polygon): at most
+/// [`MAX_CLIPPED_VERTICES`] vertices.
+pub type ScreenPolygon<const K: usize> = heapless::Vec<ScreenVertex<K>, MAX_CLIPPED_VERTICES>;
+
 /// Why a [`Pipeline`] could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PipelineError {
@@ -307,28 +312,26 @@ impl<S: Scalar> Pipeline<S> {
         Some(ScreenVertex::new(x, y, key, v.attr.to_varyings(q)))
     }
 
-    /// Clips, projects and scan-converts one convex view-space polygon.
+    /// Clips and projects one convex view-space polygon to the scan
+    /// converter's input, applying face culling: `Ok(None)` if culled.
+    ///
+    /// For strip rendering, project each polygon once per frame and keep
+    /// the results; then call [`fill_polygon`] per band, which rejects
+    /// polygons outside the band after one comparison. The result may
+    /// have fewer than three vertices (nothing visible).
     ///
     /// # Errors
     /// [`DrawError::Clip`] for non-finite or oversized input,
-    /// [`DrawError::Projection`] if a clipped vertex cannot be projected
-    /// (nothing is drawn then). Nothing panics and nothing is written
-    /// outside `target`, whatever the input.
-    pub fn draw_polygon<A, T, Z, Sh, const K: usize>(
+    /// [`DrawError::Projection`] if a clipped vertex cannot be projected.
+    pub fn project_polygon<A, const K: usize>(
         &self,
-        target: &mut T,
-        depth: &mut Z,
-        shader: &Sh,
         poly: &[Vertex<S, A>],
-    ) -> Result<FillOutcome, DrawError>
+    ) -> Result<Option<ScreenPolygon<K>>, DrawError>
     where
         A: Varyings<S, K>,
-        T: Target,
-        Z: DepthTest,
-        Sh: SpanShader<K, Color = T::Color>,
     {
         let clipped = self.frustum.clip(poly).map_err(DrawError::Clip)?;
-        let mut screen: heapless::Vec<ScreenVertex<K>, MAX_CLIPPED_VERTICES> = heapless::Vec::new();
+        let mut screen = ScreenPolygon::new();
         for v in &clipped {
             let sv = self.project(v).ok_or(DrawError::Projection)?;
             // Cannot fail: `clipped` has the same capacity.
@@ -348,10 +351,35 @@ impl<S: Scalar> Pipeline<S> {
             }
             let front = area2 < 0;
             if (self.cull == Cull::Back && !front) || (self.cull == Cull::Front && front) {
-                return Ok(FillOutcome::Culled);
+                return Ok(None);
             }
         }
-        Ok(fill_polygon(target, depth, shader, &screen))
+        Ok(Some(screen))
+    }
+
+    /// Clips, projects and scan-converts one convex view-space polygon:
+    /// [`Self::project_polygon`], then [`fill_polygon`].
+    ///
+    /// # Errors
+    /// As [`Self::project_polygon`]; nothing is drawn then. Nothing panics
+    /// and nothing is written outside `target`, whatever the input.
+    pub fn draw_polygon<A, T, Z, Sh, const K: usize>(
+        &self,
+        target: &mut T,
+        depth: &mut Z,
+        shader: &Sh,
+        poly: &[Vertex<S, A>],
+    ) -> Result<FillOutcome, DrawError>
+    where
+        A: Varyings<S, K>,
+        T: Target,
+        Z: DepthTest,
+        Sh: SpanShader<K, Color = T::Color>,
+    {
+        Ok(match self.project_polygon(poly)? {
+            Some(screen) => fill_polygon(target, depth, shader, &screen),
+            None => FillOutcome::Culled,
+        })
     }
 }
 

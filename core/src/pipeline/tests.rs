@@ -411,6 +411,25 @@ fn bands_match_full_frame<S: Scalar>() {
         }
         assert_eq!(&out[..], &full[..], "bands of {rows}");
     }
+    // Projected once, filled per band: the same pixels.
+    let projected: Vec<_> = scene
+        .iter()
+        .map(|q| p.project_polygon::<_, 1>(q).unwrap().unwrap())
+        .collect();
+    let mut out = Vec::new();
+    let mut buf = [0u8; 24 * 5];
+    let mut zb = [0u16; 24 * 5];
+    for y0 in (0..20).step_by(5) {
+        let mut band = Band::new(&mut buf, 24, 5, 24, y0).unwrap();
+        let mut depth = DepthBuffer::new(&mut zb, 24, 5, 24, y0).unwrap();
+        band.clear(0);
+        depth.clear();
+        for s in &projected {
+            crate::raster::fill_polygon(&mut band, &mut depth, &sh, s);
+        }
+        out.extend_from_slice(band.as_slice());
+    }
+    assert_eq!(&out[..], &full[..], "projected once");
 }
 
 /// A floor `y = 1`, `x ∈ [−2, 2]`, `z ∈ [¼, 8]` (crossing the near plane

@@ -15,6 +15,9 @@
 //! | [`solve`] | Gaussian elimination with partial pivoting, N×N with M right-hand sides, with pivot growth and a condition estimate |
 //! | [`transform`] | object→world from roll, pitch, yaw and an origin |
 //! | [`camera`] | cameras from angles, orthonormal vectors or general vectors (via [`solve`]); projections |
+//! | [`pipeline`] | vertex formats chosen at compile time (xyz, +intensity, +uv, +both, perspective uv); Sutherland–Hodgman clipping in view space (near, far, four side planes with a guard band); projection to 28.4 sub-pixel coordinates and depth keys |
+//! | [`raster`] | integer scan conversion of convex polygons (28.4 sub-pixel, top-left rule) into spans; span shaders (flat, Gouraud, affine and perspective-correct textures, exact or subdivided); optional depth buffer |
+//! | [`target`] | span sinks: slice framebuffer with stride, bands for strip rendering, embedded-graphics `DrawTarget` adapter |
 //!
 //! ## Coordinate conventions
 //!
@@ -56,8 +59,11 @@ extern crate std;
 
 pub mod camera;
 pub mod math;
+pub mod pipeline;
+pub mod raster;
 pub mod scalar;
 pub mod solve;
+pub mod target;
 pub mod transform;
 
 #[cfg(test)]

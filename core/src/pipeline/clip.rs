@@ -1,0 +1,217 @@
+//! Sutherland–Hodgman clipping in view space.
+//!
+//! A polygon is clipped against each [`Plane`] of a [`Frustum`] in turn;
+//! the part with `n·p + d ≥ 0` is kept. Intersections interpolate every
+//! attribute with the same parameter as the coordinates.
+//!
+//! # Shared edges clip identically
+//!
+//! Two polygons that share an edge traverse it in opposite directions.
+//! The intersection parameter is therefore always computed from the
+//! edge's endpoints in a canonical order (lexicographic by x, y, z), so
+//! both polygons get bit-identical intersection points, their projected
+//! edges coincide exactly, and the top-left rule leaves no gap or overlap.
+
+use super::vertex::{Attributes, Vertex, lerp_vertex, vertex_is_finite};
+use crate::math::Vec3;
+use crate::scalar::Scalar;
+use core::cmp::Ordering;
+use core::fmt;
+
+/// Most vertices accepted in one input polygon.
+pub const MAX_INPUT_VERTICES: usize = 8;
+
+/// Most planes in a [`Frustum`]: near, far, left, right, top, bottom.
+pub const MAX_PLANES: usize = 6;
+
+/// Capacity of a clipped polygon.
+///
+/// Clipping a **convex** polygon against one plane replaces the run of
+/// vertices outside by at most two intersection points, removing at least
+/// one vertex whenever it adds two; so each plane adds at most one vertex,
+/// and after [`MAX_PLANES`] planes a polygon of at most
+/// [`MAX_INPUT_VERTICES`] has at most `8 + 6 = 14` vertices. Non-convex
+/// input can exceed this; it is reported as
+/// [`ClipError::TooManyVertices`], never truncated silently.
+pub const MAX_CLIPPED_VERTICES: usize = MAX_INPUT_VERTICES + MAX_PLANES;
+
+/// A clipped polygon: at most [`MAX_CLIPPED_VERTICES`] vertices.
+pub type ClippedPolygon<S, A> = heapless::Vec<Vertex<S, A>, MAX_CLIPPED_VERTICES>;
+
+/// Why a polygon could not be clipped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ClipError {
+    /// A coordinate or attribute is NaN or ±∞.
+    NonFinite,
+    /// More than [`MAX_INPUT_VERTICES`] input vertices, or (non-convex
+    /// input only) more than [`MAX_CLIPPED_VERTICES`] after a plane.
+    TooManyVertices,
+}
+
+impl fmt::Display for ClipError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::NonFinite => f.write_str("polygon has a NaN or infinite coordinate or attribute"),
+            Self::TooManyVertices => f.write_str("polygon has too many vertices to clip"),
+        }
+    }
+}
+
+impl core::error::Error for ClipError {}
+
+/// A half-space `n·p + d ≥ 0` in view space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Plane<S> {
+    /// Normal (need not be unit length).
+    pub n: Vec3<S>,
+    /// Offset.
+    pub d: S,
+}
+
+impl<S: Scalar> Plane<S> {
+    /// The plane `n·p + d ≥ 0`.
+    #[must_use]
+    pub const fn new(n: Vec3<S>, d: S) -> Self {
+        Self { n, d }
+    }
+
+    /// Signed distance (scaled by |n|): ≥ 0 inside.
+    #[must_use]
+    #[inline]
+    pub fn distance(&self, p: Vec3<S>) -> S {
+        self.n.x * p.x + self.n.y * p.y + self.n.z * p.z + self.d
+    }
+}
+
+/// A set of up to [`MAX_PLANES`] clip planes; the kept part of a polygon
+/// is where every `n·p + d ≥ 0`.
+///
+/// # Shared edges clip identically
+///
+/// Intersection points are computed from each edge's endpoints in a
+/// canonical order (lexicographic by x, y, z), not in traversal order, so
+/// two polygons sharing an edge get bit-identical points on it and their
+/// rasterized edges meet without gap or overlap.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Frustum<S> {
+    planes: [Plane<S>; MAX_PLANES],
+    count: usize,
+}
+
+impl<S: Scalar> Frustum<S> {
+    /// A frustum from explicit planes (at most [`MAX_PLANES`]; extra
+    /// planes are ignored).
+    #[must_use]
+    pub fn from_planes(planes: &[Plane<S>]) -> Self {
+        let mut out = [Plane::new(Vec3::ZERO, S::ZERO); MAX_PLANES];
+        let count = planes.len().min(MAX_PLANES);
+        out[..count].copy_from_slice(&planes[..count]);
+        Self { planes: out, count }
+    }
+
+    /// The planes.
+    #[must_use]
+    pub fn planes(&self) -> &[Plane<S>] {
+        &self.planes[..self.count.min(MAX_PLANES)]
+    }
+
+    /// Clips a polygon against every plane in turn (Sutherland–Hodgman).
+    ///
+    /// A vertex exactly on a plane is kept as is (no duplicate is made);
+    /// a polygon lying in a plane is kept whole. The result may have fewer
+    /// than three vertices (nothing visible).
+    ///
+    /// # Errors
+    /// [`ClipError::NonFinite`] for NaN or ±∞ input (floats);
+    /// [`ClipError::TooManyVertices`] as documented there.
+    pub fn clip<A: Attributes<S>>(
+        &self,
+        poly: &[Vertex<S, A>],
+    ) -> Result<ClippedPolygon<S, A>, ClipError> {
+        if poly.len() > MAX_INPUT_VERTICES {
+            return Err(ClipError::TooManyVertices);
+        }
+        if !poly.iter().all(vertex_is_finite) {
+            return Err(ClipError::NonFinite);
+        }
+        let mut cur = ClippedPolygon::new();
+        for v in poly {
+            cur.push(*v).map_err(|_| ClipError::TooManyVertices)?;
+        }
+        let mut next = ClippedPolygon::new();
+        for plane in self.planes() {
+            if cur.len() < 3 {
+                cur.clear();
+                break;
+            }
+            clip_one(plane, &cur, &mut next)?;
+            core::mem::swap(&mut cur, &mut next);
+        }
+        if cur.len() < 3 {
+            cur.clear();
+        }
+        Ok(cur)
+    }
+}
+
+/// Lexicographic order on positions; only used on finite values.
+fn canonical_first<S: Scalar>(a: Vec3<S>, b: Vec3<S>) -> bool {
+    let key = |v: Vec3<S>| [v.x, v.y, v.z];
+    for (x, y) in key(a).into_iter().zip(key(b)) {
+        match x.partial_cmp(&y) {
+            Some(Ordering::Less) => return true,
+            Some(Ordering::Greater) => return false,
+            _ => {}
+        }
+    }
+    true
+}
+
+/// The point where edge a–b crosses the plane, with `da`, `db` of strictly
+/// opposite signs, computed from the canonically first endpoint.
+fn intersect<S: Scalar, A: Attributes<S>>(
+    a: &Vertex<S, A>,
+    da: S,
+    b: &Vertex<S, A>,
+    db: S,
+) -> Vertex<S, A> {
+    let (p, dp, q, dq) = if canonical_first(a.pos, b.pos) {
+        (a, da, b, db)
+    } else {
+        (b, db, a, da)
+    };
+    // dp and dq have opposite signs, so |dp − dq| ≥ |dp| and t ∈ [0, 1]
+    // up to rounding; clamp for fixed point, whose division saturates.
+    let t = (dp / (dp - dq)).clamp_to(S::ZERO, S::ONE);
+    lerp_vertex(p, q, t)
+}
+
+fn clip_one<S: Scalar, A: Attributes<S>>(
+    plane: &Plane<S>,
+    input: &ClippedPolygon<S, A>,
+    out: &mut ClippedPolygon<S, A>,
+) -> Result<(), ClipError> {
+    out.clear();
+    let Some(last) = input.last() else {
+        return Ok(());
+    };
+    let mut s = last;
+    let mut ds = plane.distance(s.pos);
+    let full = |_| ClipError::TooManyVertices;
+    for e in input.iter() {
+        let de = plane.distance(e.pos);
+        if de >= S::ZERO {
+            // A crossing needs strictly opposite signs: a vertex exactly on
+            // the plane is itself the crossing point.
+            if ds < S::ZERO && de > S::ZERO {
+                out.push(intersect(s, ds, e, de)).map_err(full)?;
+            }
+            out.push(*e).map_err(full)?;
+        } else if ds > S::ZERO {
+            out.push(intersect(s, ds, e, de)).map_err(full)?;
+        }
+        s = e;
+        ds = de;
+    }
+    Ok(())
+}

@@ -1,0 +1,756 @@
+use super::*;
+use crate::camera::Projection;
+use crate::raster::{DepthBuffer, FillOutcome, Flat, Gouraud, NoDepth};
+use crate::scalar::{I16F16, Scalar};
+use crate::test_util::MockTarget;
+use proptest::prelude::*;
+use std::vec::Vec;
+
+fn v3<S: Scalar>(x: f64, y: f64, z: f64) -> Vec3<S> {
+    Vec3::new(S::from_f64(x), S::from_f64(y), S::from_f64(z))
+}
+
+fn vi<S: Scalar>(x: f64, y: f64, z: f64, i: f64) -> VertexXyzI<S> {
+    Vertex::new(v3(x, y, z), Intensity(S::from_f64(i)))
+}
+
+/// 12×8 viewport, focus 8 px, near 1, far 100, guard 4 px.
+fn pipe<S: Scalar>() -> Pipeline<S> {
+    Pipeline::new(
+        Projection::perspective(S::from_i32(8), 12, 8),
+        12,
+        8,
+        S::ONE,
+        S::from_i32(100),
+        S::from_i32(4),
+    )
+    .unwrap()
+}
+
+fn near_only<S: Scalar>(near: f64) -> Frustum<S> {
+    Frustum::from_planes(&[Plane::new(v3(0.0, 0.0, 1.0), S::from_f64(-near))])
+}
+
+fn digits() -> [char; 256] {
+    core::array::from_fn(|i| char::from(b'0' + (i * 10 / 256) as u8))
+}
+
+/// Tolerance for comparisons in the scalar type: 256 ε times a magnitude.
+fn tol<S: Scalar>(mag: f64) -> f64 {
+    S::EPSILON.to_f64() * 256.0 * mag.max(1.0)
+}
+
+fn near_clip_interpolates<S: Scalar>() {
+    // Edge z = 0 → 2 with intensity 0 → 1 crosses z = 1 at intensity ½.
+    let tri = [
+        vi::<S>(0.0, 0.0, 0.0, 0.0),
+        vi(0.0, 0.0, 2.0, 1.0),
+        vi(1.0, 0.0, 2.0, 1.0),
+    ];
+    let out = near_only::<S>(1.0).clip(&tri).unwrap();
+    assert_eq!(out.len(), 4);
+    for v in &out {
+        assert!(v.pos.z.to_f64() >= 1.0 - tol::<S>(2.0));
+    }
+    let mid = out
+        .iter()
+        .find(|v| v.pos.x.to_f64().abs() < tol::<S>(1.0))
+        .unwrap();
+    assert!((mid.pos.z.to_f64() - 1.0).abs() <= tol::<S>(2.0));
+    assert!((mid.attr.0.to_f64() - 0.5).abs() <= tol::<S>(1.0));
+}
+
+fn vertex_on_plane_is_kept_once<S: Scalar>() {
+    let f = near_only::<S>(1.0);
+    // One vertex on the plane, the rest inside: unchanged.
+    let tri = [
+        vi::<S>(0.0, 0.0, 1.0, 0.2),
+        vi(1.0, 0.0, 2.0, 0.4),
+        vi(0.0, 1.0, 3.0, 0.6),
+    ];
+    let out = f.clip(&tri).unwrap();
+    assert_eq!(&out[..], &tri[..]);
+    // One on the plane, one on each side: the on-plane vertex appears once,
+    // plus one intersection.
+    let tri = [
+        vi::<S>(0.0, 0.0, 1.0, 0.0),
+        vi(1.0, 0.0, 0.0, 0.0),
+        vi(0.0, 1.0, 3.0, 1.0),
+    ];
+    let out = f.clip(&tri).unwrap();
+    assert_eq!(out.len(), 3);
+    assert_eq!(out.iter().filter(|v| **v == tri[0]).count(), 1);
+    // Only touching the plane from outside: nothing remains.
+    let tri = [
+        vi::<S>(0.0, 0.0, 1.0, 0.0),
+        vi(1.0, 0.0, 0.0, 0.0),
+        vi(0.0, 1.0, 0.5, 1.0),
+    ];
+    assert!(f.clip(&tri).unwrap().is_empty());
+}
+
+fn polygon_in_plane_is_kept<S: Scalar>() {
+    let quad = [
+        vi::<S>(-1.0, -1.0, 1.0, 0.0),
+        vi(1.0, -1.0, 1.0, 0.0),
+        vi(1.0, 1.0, 1.0, 1.0),
+        vi(-1.0, 1.0, 1.0, 1.0),
+    ];
+    assert_eq!(&near_only::<S>(1.0).clip(&quad).unwrap()[..], &quad[..]);
+    // Wholly behind: empty.
+    let behind: Vec<_> = quad
+        .iter()
+        .map(|v| Vertex::new(v3::<S>(0.0, 0.0, -1.0) + v.pos, v.attr))
+        .collect();
+    assert!(near_only::<S>(1.0).clip(&behind).unwrap().is_empty());
+}
+
+fn shared_edges_clip_identically<S: Scalar>() {
+    // Two triangles share the edge P–Q, which crosses the near plane and
+    // the left side plane; they traverse it in opposite directions.
+    let p = pipe::<S>();
+    let (pp, q) = (vi::<S>(-9.0, -0.5, 0.25, 0.0), vi::<S>(0.7, 0.9, 6.0, 1.0));
+    let a = [pp, q, vi(-2.0, 3.0, 3.0, 0.5)];
+    let b = [q, pp, vi(1.0, -2.0, 2.0, 0.5)];
+    let ca = p.frustum().clip(&a).unwrap();
+    let cb = p.frustum().clip(&b).unwrap();
+    // Vertices of `ca` on the line P–Q must appear bit-identically in `cb`.
+    let on_pq = |v: &VertexXyzI<S>| {
+        let d = q.pos - pp.pos;
+        let e = v.pos - pp.pos;
+        let c = d.cross(e);
+        let (x, y, z) = (c.x.to_f64(), c.y.to_f64(), c.z.to_f64());
+        (x * x + y * y + z * z).sqrt() <= tol::<S>(100.0)
+    };
+    let shared: Vec<_> = ca.iter().filter(|v| on_pq(v)).collect();
+    assert_eq!(shared.len(), 2, "{ca:?}");
+    for v in shared {
+        assert!(cb.iter().any(|w| w.pos == v.pos), "{v:?} not in {cb:?}");
+    }
+    // And the scan converter draws them without overlap.
+    let mut t = MockTarget::new(12, 8);
+    p.draw_polygon(&mut t, &mut NoDepth, &Flat('a'), &a)
+        .unwrap();
+    p.draw_polygon(&mut t, &mut NoDepth, &Flat('b'), &b)
+        .unwrap();
+}
+
+fn square_pattern<S: Scalar>() {
+    // x, y ∈ [−1, 1] at z = 2 projects to x_s ∈ [2, 10], y_s ∈ [0, 8].
+    let p = pipe::<S>();
+    let sq = [
+        vi::<S>(-1.0, -1.0, 2.0, 0.0),
+        vi(1.0, -1.0, 2.0, 1.0),
+        vi(1.0, 1.0, 2.0, 1.0),
+        vi(-1.0, 1.0, 2.0, 0.0),
+    ];
+    let mut t = MockTarget::new(12, 8);
+    p.draw_polygon(&mut t, &mut NoDepth, &Gouraud::new(&digits()), &sq)
+        .unwrap();
+    // Intensity at centre x_s = c is 255·(c − 2)/8, shown as i·10/256.
+    t.assert_pattern(&[
+        "..01345689..", //
+        "..01345689..", //
+        "..01345689..", //
+        "..01345689..", //
+        "..01345689..", //
+        "..01345689..", //
+        "..01345689..", //
+        "..01345689..", //
+    ]);
+}
+
+fn near_clipped_floor_pattern<S: Scalar>() {
+    // A floor y = 1 from z = 0 (behind the near plane) to z = 4: clipped at
+    // z = 1 (y_s = 12, below the screen), far edge at y_s = 6, x_s ∈ [4, 8].
+    // Row 6's centre line meets the sides at 3.5 and 8.5, row 7's at 2.5
+    // and 9.5.
+    let p = pipe::<S>();
+    let floor = [
+        vi::<S>(-1.0, 1.0, 0.0, 0.0),
+        vi(1.0, 1.0, 0.0, 0.0),
+        vi(1.0, 1.0, 4.0, 0.0),
+        vi(-1.0, 1.0, 4.0, 0.0),
+    ];
+    let mut t = MockTarget::new(12, 8);
+    p.draw_polygon(&mut t, &mut NoDepth, &Flat('#'), &floor)
+        .unwrap();
+    t.assert_pattern(&[
+        "............", //
+        "............", //
+        "............", //
+        "............", //
+        "............", //
+        "............", //
+        "...#####....", //
+        "..#######...", //
+    ]);
+}
+
+fn depth_through_pipeline<S: Scalar>() {
+    // A near square (z = 2) and a larger far one (z = 4) overlapping it:
+    // drawn far first or near first, the near one wins where they overlap.
+    let p = pipe::<S>();
+    let sq = |h: f64, z: f64| {
+        [
+            Vertex::new(v3::<S>(-h, -h, z), ()),
+            Vertex::new(v3(h, -h, z), ()),
+            Vertex::new(v3(h, h, z), ()),
+            Vertex::new(v3(-h, h, z), ()),
+        ]
+    };
+    let near = sq(0.5, 2.0);
+    let far = sq(2.0, 4.0);
+    let expected = [
+        "..ffffffff..", //
+        "..ffffffff..", //
+        "..ffnnnnff..", //
+        "..ffnnnnff..", //
+        "..ffnnnnff..", //
+        "..ffnnnnff..", //
+        "..ffffffff..", //
+        "..ffffffff..", //
+    ];
+    for near_first in [false, true] {
+        let mut zb = [u16::MAX; 96];
+        let mut depth = DepthBuffer::new(&mut zb, 12, 8, 12, 0).unwrap();
+        let mut t = MockTarget::new(12, 8);
+        t.allow_overdraw = !near_first;
+        let order = if near_first {
+            [(near, 'n'), (far, 'f')]
+        } else {
+            [(far, 'f'), (near, 'n')]
+        };
+        for (poly, c) in order {
+            p.draw_polygon(&mut t, &mut depth, &Flat(c), &poly).unwrap();
+        }
+        t.assert_pattern(&expected);
+    }
+}
+
+fn bad_input<S: Scalar>() {
+    let p = pipe::<S>();
+    let mut t = MockTarget::new(12, 8);
+    t.allow_overdraw = true;
+    let mut zb = [u16::MAX; 96];
+    let mut depth = DepthBuffer::new(&mut zb, 12, 8, 12, 0).unwrap();
+    // `from_f64` maps NaN to 0 and saturates, so build the specials by
+    // arithmetic: 0/0 and ±1/0 are NaN and ±∞ for floats (0 and
+    // saturated for fixed point).
+    let sp = |k: usize| -> S {
+        match k {
+            0 => S::ZERO / S::from_i32(0),
+            1 => S::ONE / S::ZERO,
+            2 => -S::ONE / S::ZERO,
+            k => S::from_f64([1e30, -1e30, 0.0, 1e-30, 3e4, -3e4, 0.5][k - 3]),
+        }
+    };
+    for a in 0..10 {
+        for b in 0..10 {
+            let (x, y) = (sp(a), sp(b));
+            let tri = [
+                Vertex::new(Vec3::new(x, S::HALF, S::TWO), Intensity(y)),
+                Vertex::new(Vec3::new(S::ONE, y, x), Intensity(S::HALF)),
+                Vertex::new(Vec3::new(-S::ONE, S::ONE, y), Intensity(x)),
+            ];
+            let r = p.draw_polygon(&mut t, &mut depth, &Gouraud::new(&digits()), &tri);
+            if S::IS_FLOAT && (a < 3 || b < 3) {
+                assert_eq!(r, Err(DrawError::Clip(ClipError::NonFinite)));
+            }
+        }
+    }
+    // Fixed-point extremes.
+    let (mx, mn) = (S::MAX.to_f64(), S::MIN.to_f64());
+    let tri = [
+        vi::<S>(mx, mn, mx, mx),
+        vi(mn, mx, S::EPSILON.to_f64(), mn),
+        vi(0.0, 0.0, mx, 0.5),
+    ];
+    let _ = p.draw_polygon(&mut t, &mut depth, &Gouraud::new(&digits()), &tri);
+    // Too many vertices.
+    let many = [vi::<S>(0.0, 0.0, 2.0, 0.0); MAX_INPUT_VERTICES + 1];
+    assert_eq!(
+        p.draw_polygon(&mut t, &mut NoDepth, &Flat('x'), &many),
+        Err(DrawError::Clip(ClipError::TooManyVertices))
+    );
+    // Degenerate pipelines are refused.
+    let proj = Projection::perspective(S::from_i32(8), 12, 8);
+    assert_eq!(
+        Pipeline::new(proj, 12, 8, S::ONE, S::ONE, S::ZERO),
+        Err(PipelineError::BadDepthRange)
+    );
+    assert_eq!(
+        Pipeline::new(proj, 12, 8, S::ZERO, S::ONE, S::ZERO),
+        Err(PipelineError::BadDepthRange)
+    );
+}
+
+fn parallel_projection_square<S: Scalar>() {
+    // Scale 2 px per unit about (6, 4): x, y ∈ [−2, 2] → [2, 10] × [0, 8].
+    let p = Pipeline::new(
+        Projection::parallel(S::TWO, 12, 8),
+        12,
+        8,
+        S::ONE,
+        S::from_i32(10),
+        S::ZERO,
+    )
+    .unwrap();
+    let sq = [
+        Vertex::new(v3::<S>(-2.0, -3.0, 5.0), ()),
+        Vertex::new(v3(2.0, -3.0, 5.0), ()),
+        Vertex::new(v3(2.0, 1.0, 5.0), ()),
+        Vertex::new(v3(-2.0, 1.0, 5.0), ()),
+    ];
+    let mut t = MockTarget::new(12, 8);
+    p.draw_polygon(&mut t, &mut NoDepth, &Flat('#'), &sq)
+        .unwrap();
+    // y ∈ [−3, 1] → y_s ∈ [−2, 6]; the top is clipped by the side plane
+    // at the screen edge (guard 0).
+    t.assert_pattern(&[
+        "..########..", //
+        "..########..", //
+        "..########..", //
+        "..########..", //
+        "..########..", //
+        "..########..", //
+        "............", //
+        "............", //
+    ]);
+}
+
+/// Clipped vertices lie inside every plane (within tolerance) and their
+/// intensities within the input's range. Random points with more than
+/// three vertices are usually non-convex, and may then exceed the
+/// capacity derived for convex input: that must be reported as
+/// `TooManyVertices`, never truncated; a triangle always fits.
+fn clip_stays_in_volume<S: Scalar>(pts: &[(f64, f64, f64, f64)]) {
+    let p = pipe::<S>();
+    let tri: Vec<VertexXyzI<S>> = pts.iter().map(|&(x, y, z, i)| vi(x, y, z, i)).collect();
+    let (lo, hi) = tri.iter().fold((f64::MAX, f64::MIN), |(lo, hi), v| {
+        (lo.min(v.attr.0.to_f64()), hi.max(v.attr.0.to_f64()))
+    });
+    let out = match p.frustum().clip(&tri) {
+        Ok(out) => out,
+        Err(ClipError::TooManyVertices) if tri.len() > 3 => return,
+        Err(e) => panic!("{e:?} for {tri:?}"),
+    };
+    assert!(out.len() <= MAX_CLIPPED_VERTICES);
+    for v in &out {
+        for pl in p.frustum().planes() {
+            let d = pl.distance(v.pos).to_f64();
+            assert!(d >= -tol::<S>(200.0), "{v:?} outside {pl:?} by {d}");
+        }
+        let i = v.attr.0.to_f64();
+        assert!(
+            i >= lo - tol::<S>(1.0) && i <= hi + tol::<S>(1.0),
+            "{i} not in [{lo}, {hi}]"
+        );
+    }
+    // And drawing never escapes the target.
+    let mut t = MockTarget::new(12, 8);
+    let _ = p.draw_polygon(&mut t, &mut NoDepth, &Gouraud::new(&digits()), &tri);
+}
+
+/// A small scene (two interpenetrating Gouraud quads, one crossing the
+/// near plane) rendered to a 24×20 frame in one go and in bands of
+/// `rows`: the results must be bit-identical.
+fn bands_match_full_frame<S: Scalar>() {
+    use crate::target::{Band, Framebuffer};
+    let p = Pipeline::new(
+        Projection::perspective(S::from_i32(16), 24, 20),
+        24,
+        20,
+        S::HALF,
+        S::from_i32(50),
+        S::from_i32(8),
+    )
+    .unwrap();
+    let scene = [
+        [
+            vi::<S>(-3.0, -2.0, 4.0, 0.0),
+            vi(2.0, -2.5, 6.0, 0.3),
+            vi(2.5, 2.0, 3.0, 1.0),
+            vi(-2.0, 2.5, 2.0, 0.6),
+        ],
+        [
+            vi::<S>(-1.0, 1.0, 0.1, 1.0),
+            vi(1.5, 1.0, 0.1, 0.8),
+            vi(1.5, -1.0, 9.0, 0.2),
+            vi(-1.0, -1.0, 9.0, 0.0),
+        ],
+    ];
+    let ramp: [u8; 256] = core::array::from_fn(|i| i as u8);
+    let sh = Gouraud::new(&ramp);
+    let mut full = [0u8; 24 * 20];
+    let mut zfull = [u16::MAX; 24 * 20];
+    {
+        let mut fb = Framebuffer::new(&mut full, 24, 20, 24).unwrap();
+        let mut depth = DepthBuffer::new(&mut zfull, 24, 20, 24, 0).unwrap();
+        for q in &scene {
+            p.draw_polygon(&mut fb, &mut depth, &sh, q).unwrap();
+        }
+    }
+    assert!(full.iter().filter(|&&c| c != 0).count() > 100);
+    for rows in [1u16, 4, 6] {
+        let mut out = Vec::new();
+        let mut buf = [0u8; 24 * 6];
+        let mut zb = [0u16; 24 * 6];
+        let mut y0 = 0;
+        while y0 < 20 {
+            let n = rows.min(20 - y0 as u16);
+            let mut band = Band::new(&mut buf, 24, n, 24, y0).unwrap();
+            let mut depth = DepthBuffer::new(&mut zb, 24, n, 24, y0).unwrap();
+            band.clear(0);
+            depth.clear();
+            for q in &scene {
+                p.draw_polygon(&mut band, &mut depth, &sh, q).unwrap();
+            }
+            out.extend_from_slice(&band.as_slice()[..24 * n as usize]);
+            y0 += n as i32;
+        }
+        assert_eq!(&out[..], &full[..], "bands of {rows}");
+    }
+    // Projected once, filled per band: the same pixels.
+    let projected: Vec<_> = scene
+        .iter()
+        .map(|q| p.project_polygon::<_, 1>(q).unwrap().unwrap())
+        .collect();
+    let mut out = Vec::new();
+    let mut buf = [0u8; 24 * 5];
+    let mut zb = [0u16; 24 * 5];
+    for y0 in (0..20).step_by(5) {
+        let mut band = Band::new(&mut buf, 24, 5, 24, y0).unwrap();
+        let mut depth = DepthBuffer::new(&mut zb, 24, 5, 24, y0).unwrap();
+        band.clear(0);
+        depth.clear();
+        for s in &projected {
+            crate::raster::fill_polygon(&mut band, &mut depth, &sh, s);
+        }
+        out.extend_from_slice(band.as_slice());
+    }
+    assert_eq!(&out[..], &full[..], "projected once");
+}
+
+/// A floor `y = 1`, `x ∈ [−2, 2]`, `z ∈ [¼, 8]` (crossing the near plane
+/// at ½) textured with u = 2x + 4, v = 2z, through a 32×24 perspective
+/// pipeline (focus 12). `make` builds the vertex attributes from (u, v).
+fn render_floor<S: Scalar, A, Sh, const K: usize>(
+    sh: &Sh,
+    make: impl Fn(S, S) -> A,
+) -> [u16; 32 * 24]
+where
+    A: Varyings<S, K>,
+    Sh: crate::raster::SpanShader<K, Color = u16>,
+{
+    use crate::target::Framebuffer;
+    let p = Pipeline::new(
+        Projection::perspective(S::from_i32(12), 32, 24),
+        32,
+        24,
+        S::HALF,
+        S::from_i32(64),
+        S::from_i32(4),
+    )
+    .unwrap();
+    let mut buf = [u16::MAX; 32 * 24];
+    let mut fb = Framebuffer::new(&mut buf, 32, 24, 32).unwrap();
+    let q: Vec<_> = [(-2.0, 0.25), (2.0, 0.25), (2.0, 8.0), (-2.0, 8.0)]
+        .iter()
+        .map(|&(x, z)| {
+            Vertex::new(
+                v3::<S>(x, 1.0, z),
+                make(S::from_f64(2.0 * x + 4.0), S::from_f64(2.0 * z)),
+            )
+        })
+        .collect();
+    p.draw_polygon(&mut fb, &mut NoDepth, sh, &q).unwrap();
+    buf
+}
+
+/// Pixels whose texel differs from the exact one found by casting a ray
+/// in f64 through the pixel centre, ignoring pixels within `margin`
+/// texels of a texel boundary: (mismatches, drawn).
+fn floor_mismatches(buf: &[u16; 32 * 24], margin: f64) -> (usize, usize) {
+    let (cx, cy, f) = (16.0, 12.0, 12.0);
+    let (mut bad, mut drawn) = (0, 0);
+    for j in 0..24 {
+        for i in 0..32 {
+            let got = buf[j * 32 + i];
+            if got == u16::MAX {
+                continue;
+            }
+            drawn += 1;
+            let (px, py) = (i as f64 + 0.5, j as f64 + 0.5);
+            let z = f / (py - cy);
+            let x = z * (px - cx) / f;
+            let (u, v) = (2.0 * x + 4.0, 2.0 * z);
+            let near_edge = |t: f64| (t - t.round()).abs() < margin;
+            if near_edge(u) || near_edge(v) {
+                continue;
+            }
+            let want =
+                ((v.floor() as i64).rem_euclid(16) * 8 + (u.floor() as i64).rem_euclid(8)) as u16;
+            if got != want {
+                bad += 1;
+            }
+        }
+    }
+    (bad, drawn)
+}
+
+fn perspective_texture_matches_ray_cast<S: Scalar>() {
+    use crate::raster::{AffineTexture, PerspectiveTexture, RepeatPow2, Texture};
+    // Texel (i, j) of the 8×16 texture holds j·8 + i.
+    let data: [u16; 128] = core::array::from_fn(|k| k as u16);
+    let tex = Texture::new(&data, 8, 16, 8).unwrap();
+    // The margin covers the rounding of 28.4 vertices and of q; it is
+    // wider for I16F16, whose 1/z has only 16 fractional bits.
+    let margin = if S::IS_FLOAT { 0.02 } else { 0.1 };
+    let persp = |u, v| UvPerspective { u, v };
+    let exact = PerspectiveTexture::<u16, RepeatPow2, 1>::new(tex).unwrap();
+    let (bad, drawn) = floor_mismatches(&render_floor::<S, _, _, 3>(&exact, persp), margin);
+    assert!(drawn > 150, "{drawn}");
+    assert_eq!(bad, 0, "exact perspective: {bad} of {drawn}");
+    // Subdivided runs: exact at run ends, affine between; the error stays
+    // small on this floor.
+    let sub8 = PerspectiveTexture::<u16, RepeatPow2, 8>::new(tex).unwrap();
+    let sub16 = PerspectiveTexture::<u16, RepeatPow2, 16>::new(tex).unwrap();
+    let sub32 = PerspectiveTexture::<u16, RepeatPow2, 32>::new(tex).unwrap();
+    for buf in [
+        render_floor::<S, _, _, 3>(&sub8, persp),
+        render_floor::<S, _, _, 3>(&sub16, persp),
+        render_floor::<S, _, _, 3>(&sub32, persp),
+    ] {
+        let (bad, drawn) = floor_mismatches(&buf, margin);
+        assert!(bad * 20 <= drawn, "subdivided: {bad} of {drawn}");
+    }
+    // Affine mapping is visibly wrong on a floor seen in perspective.
+    let affine = AffineTexture::<u16, RepeatPow2>::new(tex).unwrap();
+    let (bad, drawn) = floor_mismatches(
+        &render_floor::<S, _, _, 2>(&affine, |u, v| Uv { u, v }),
+        margin,
+    );
+    assert!(bad * 4 > drawn, "affine should swim: {bad} of {drawn}");
+}
+
+/// A jittered grid mesh on the plane z = z0 + ax·x + by·y, crossing the
+/// near plane and the side planes, drawn triangle by triangle into a
+/// target that panics on overdraw and out-of-bounds writes: shared edges
+/// must clip and project identically for the top-left rule to partition
+/// them. The plane's visible part projects without folding, but snapping
+/// to 28.4 can flip the orientation of slivers seen nearly edge-on; such
+/// meshes genuinely overlap and are skipped (returns `false`).
+fn clipped_mesh_has_no_overdraw<S: Scalar>(
+    z0: f64,
+    ax: f64,
+    by: f64,
+    cell: f64,
+    jitter: &[(f64, f64)],
+) -> bool {
+    let p = Pipeline::new(
+        Projection::perspective(S::from_i32(10), 24, 18),
+        24,
+        18,
+        S::from_f64(0.3),
+        S::from_i32(40),
+        S::from_i32(2),
+    )
+    .unwrap();
+    let n = 8usize;
+    let vert = |i: usize, j: usize| {
+        let (jx, jy) = jitter[(j * (n + 1) + i) % jitter.len()];
+        let x = (i as f64 - n as f64 / 2.0 + jx * 0.25) * cell;
+        let y = (j as f64 - n as f64 / 2.0 + jy * 0.25) * cell;
+        Vertex::new(v3::<S>(x, y, z0 + ax * x + by * y), ())
+    };
+    let mut tris = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let (a, b, c, d) = (
+                vert(i, j),
+                vert(i + 1, j),
+                vert(i + 1, j + 1),
+                vert(i, j + 1),
+            );
+            if (i + j) % 2 == 0 {
+                tris.extend([[a, b, c], [a, c, d]]);
+            } else {
+                tris.extend([[a, b, d], [b, c, d]]);
+            }
+        }
+    }
+    // Orientation of each clipped, snapped polygon.
+    let (mut pos, mut neg) = (false, false);
+    for tri in &tris {
+        let cl = p.frustum().clip(tri).unwrap();
+        let sv: Vec<_> = cl.iter().filter_map(|v| p.project::<(), 0>(v)).collect();
+        let mut area = 0i64;
+        for k in 0..sv.len() {
+            let (a, b) = (sv[k], sv[(k + 1) % sv.len()]);
+            area += a.x as i64 * b.y as i64 - a.y as i64 * b.x as i64;
+        }
+        pos |= area > 0;
+        neg |= area < 0;
+    }
+    if pos && neg {
+        return false;
+    }
+    let mut t = MockTarget::new(24, 18);
+    for tri in &tris {
+        p.draw_polygon(&mut t, &mut NoDepth, &Flat('#'), tri)
+            .unwrap();
+    }
+    true
+}
+
+fn slivers_clip_inside<S: Scalar>() {
+    // Needle-thin triangles crossing the near plane and a side plane, one
+    // with two vertices a grid step apart: clipping keeps them inside the
+    // volume and drawing them neither panics nor escapes the target.
+    let p = pipe::<S>();
+    let e = S::EPSILON.to_f64();
+    let slivers = [
+        [
+            vi::<S>(-30.0, 0.0, -1.0, 0.0),
+            vi(30.0, 0.0, 9.0, 1.0),
+            vi(30.0, e, 9.0, 1.0),
+        ],
+        [
+            vi::<S>(0.0, 0.0, 0.5, 0.0),
+            vi(0.0, 0.0, 0.5 + e, 1.0),
+            vi(20.0, 3.0, 3.0, 0.5),
+        ],
+        [
+            vi::<S>(-5.0, -5.0, 1.0, 0.2),
+            vi(5.0, 5.0, 1.0, 0.8),
+            vi(5.0, 5.0 + e, 1.0, 0.8),
+        ],
+    ];
+    let mut t = MockTarget::new(12, 8);
+    t.allow_overdraw = true;
+    for tri in &slivers {
+        let out = p.frustum().clip(tri).unwrap();
+        for v in &out {
+            for pl in p.frustum().planes() {
+                assert!(pl.distance(v.pos).to_f64() >= -tol::<S>(100.0), "{v:?}");
+            }
+            let i = v.attr.0.to_f64();
+            assert!((-tol::<S>(1.0)..=1.0 + tol::<S>(1.0)).contains(&i));
+        }
+        let _ = p.draw_polygon(&mut t, &mut NoDepth, &Gouraud::new(&digits()), tri);
+    }
+}
+
+fn culling<S: Scalar>() {
+    // Seen from the eye (looking along +z, y down), a→b→c runs
+    // counter-clockwise: down the left side, then right along the bottom.
+    // With y down that is a negative screen area: front-facing.
+    let front = [
+        Vertex::new(v3::<S>(-0.5, -0.5, 2.0), ()),
+        Vertex::new(v3(-0.5, 0.5, 2.0), ()),
+        Vertex::new(v3(0.5, 0.5, 2.0), ()),
+    ];
+    let back = [front[0], front[2], front[1]];
+    let p = pipe::<S>();
+    for (cull, f, b) in [
+        (Cull::None, true, true),
+        (Cull::Back, true, false),
+        (Cull::Front, false, true),
+    ] {
+        let q = p.with_cull(cull);
+        let mut t = MockTarget::new(12, 8);
+        t.allow_overdraw = true;
+        let rf = q
+            .draw_polygon(&mut t, &mut NoDepth, &Flat('#'), &front)
+            .unwrap();
+        let rb = q
+            .draw_polygon(&mut t, &mut NoDepth, &Flat('#'), &back)
+            .unwrap();
+        assert_eq!(rf == FillOutcome::Drawn, f, "{cull:?}");
+        assert_eq!(rb == FillOutcome::Drawn, b, "{cull:?}");
+        assert_eq!(rf == FillOutcome::Culled, !f);
+    }
+}
+
+macro_rules! pipeline_tests {
+    ($m:ident, $S:ty) => {
+        mod $m {
+            use super::*;
+            #[test]
+            fn near_clip_interpolates() {
+                super::near_clip_interpolates::<$S>();
+            }
+            #[test]
+            fn vertex_on_plane_is_kept_once() {
+                super::vertex_on_plane_is_kept_once::<$S>();
+            }
+            #[test]
+            fn polygon_in_plane_is_kept() {
+                super::polygon_in_plane_is_kept::<$S>();
+            }
+            #[test]
+            fn shared_edges_clip_identically() {
+                super::shared_edges_clip_identically::<$S>();
+            }
+            #[test]
+            fn square_pattern() {
+                super::square_pattern::<$S>();
+            }
+            #[test]
+            fn near_clipped_floor_pattern() {
+                super::near_clipped_floor_pattern::<$S>();
+            }
+            #[test]
+            fn depth_through_pipeline() {
+                super::depth_through_pipeline::<$S>();
+            }
+            #[test]
+            fn bands_match_full_frame() {
+                super::bands_match_full_frame::<$S>();
+            }
+            #[test]
+            fn perspective_texture_matches_ray_cast() {
+                super::perspective_texture_matches_ray_cast::<$S>();
+            }
+            #[test]
+            fn slivers_clip_inside() {
+                super::slivers_clip_inside::<$S>();
+            }
+            #[test]
+            fn culling() {
+                super::culling::<$S>();
+            }
+            #[test]
+            fn bad_input() {
+                super::bad_input::<$S>();
+            }
+            #[test]
+            fn parallel_projection_square() {
+                super::parallel_projection_square::<$S>();
+            }
+            proptest! {
+                #[test]
+                fn clipped_mesh_has_no_overdraw(
+                    z0 in -2.0f64..6.0, ax in -1.5f64..1.5, by in -1.5f64..1.5,
+                    cell in 0.05f64..3.0,
+                    jitter in proptest::collection::vec((-1.0f64..1.0, -1.0f64..1.0), 1..30),
+                ) {
+                    prop_assume!(super::clipped_mesh_has_no_overdraw::<$S>(z0, ax, by, cell, &jitter));
+                }
+
+                #[test]
+                fn clip_stays_in_volume(
+                    pts in proptest::collection::vec(
+                        (-40.0f64..40.0, -40.0f64..40.0, -5.0f64..150.0, 0.0f64..1.0), 3..8),
+                ) {
+                    super::clip_stays_in_volume::<$S>(&pts);
+                }
+            }
+        }
+    };
+}
+
+pipeline_tests!(f32_tests, f32);
+pipeline_tests!(i16f16_tests, I16F16);
+pipeline_tests!(f64_tests, f64);

@@ -1,0 +1,201 @@
+//! Optional depth testing, chosen at compile time.
+//!
+//! The scan converter is generic over [`DepthTest`]: with [`NoDepth`] the
+//! test, the depth plane set-up and the run splitting all compile away
+//! (`ENABLED` is a constant), so a scene without a depth buffer pays
+//! nothing for the feature.
+
+use crate::target::{BufferError, Rect, layout::Layout};
+
+/// Depth keys: 0 is nearest, 65535 farthest. The pipeline maps the near
+/// plane to 0 and the far plane to 65535 (see
+/// [`pipeline`](crate::pipeline)).
+pub type DepthKey = u16;
+
+/// Fractional bits of the interpolated depth key (24.8 in an `i32`): the
+/// step error over a span of 256 pixels stays below one key unit.
+pub const DEPTH_FRAC_BITS: u32 = 8;
+
+/// A per-span depth test that splits a span into the runs that pass.
+pub trait DepthTest {
+    /// `false` only for [`NoDepth`]: lets the scan converter skip the depth
+    /// plane set-up at compile time.
+    const ENABLED: bool;
+
+    /// The pixels this buffer holds, or `None` when it imposes no limit.
+    fn clip_rect(&self) -> Option<Rect>;
+
+    /// Tests the span `x..x+len` of row `y`, where pixel `x+i` has key
+    /// `(z + i·dz) >> DEPTH_FRAC_BITS`. Stores the keys that pass (strictly
+    /// less than the stored key) and calls `pass(offset, run)` for each
+    /// maximal run of passing pixels, left to right. Pixels outside the
+    /// buffer fail.
+    fn test_span<F: FnMut(u32, u32)>(&mut self, y: i32, x: i32, len: u32, z: i32, dz: i32, pass: F);
+}
+
+/// No depth buffer: every pixel passes.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NoDepth;
+
+impl DepthTest for NoDepth {
+    const ENABLED: bool = false;
+
+    fn clip_rect(&self) -> Option<Rect> {
+        None
+    }
+
+    #[inline]
+    fn test_span<F: FnMut(u32, u32)>(
+        &mut self,
+        _y: i32,
+        _x: i32,
+        len: u32,
+        _z: i32,
+        _dz: i32,
+        mut pass: F,
+    ) {
+        pass(0, len);
+    }
+}
+
+/// A depth buffer of 16-bit keys over a caller-supplied slice, with the
+/// same shape rules as [`Framebuffer`](crate::target::Framebuffer) and an
+/// optional first row, so a band-sized depth buffer can follow a
+/// [`Band`](crate::target::Band).
+///
+/// # Guarantees
+///
+/// Validated once by [`DepthBuffer::new`]; afterwards no method panics or
+/// writes outside the slice.
+#[derive(Debug)]
+pub struct DepthBuffer<'a> {
+    buf: &'a mut [DepthKey],
+    layout: Layout,
+}
+
+impl<'a> DepthBuffer<'a> {
+    /// Wraps `buf` as `rows` rows of `width` keys, `stride` apart, for
+    /// frame rows `y0..y0+rows`.
+    ///
+    /// # Errors
+    /// As [`Band::new`](crate::target::Band::new).
+    pub fn new(
+        buf: &'a mut [DepthKey],
+        width: u16,
+        rows: u16,
+        stride: usize,
+        y0: i32,
+    ) -> Result<Self, BufferError> {
+        let layout = Layout::new(buf.len(), width, rows, stride, y0)?;
+        Ok(Self { buf, layout })
+    }
+
+    /// Sets every key to the farthest value, 65535.
+    pub fn clear(&mut self) {
+        for row in 0..self.layout.height as i32 {
+            if let Some((_, r)) =
+                self.layout
+                    .span(self.layout.y0 + row, 0, self.layout.width as u32)
+            {
+                if let Some(s) = self.buf.get_mut(r) {
+                    s.fill(DepthKey::MAX);
+                }
+            }
+        }
+    }
+
+    /// Moves the buffer to frame rows `y0..y0+rows` (contents kept).
+    ///
+    /// # Errors
+    /// [`BufferError::Overflow`] if `y0 + rows` overflows `i32`.
+    pub fn move_to(&mut self, y0: i32) -> Result<(), BufferError> {
+        let l = self.layout;
+        self.layout = Layout::new(self.buf.len(), l.width, l.height, l.stride, y0)?;
+        Ok(())
+    }
+
+    /// The key at frame position (x, y), or `None` outside.
+    #[must_use]
+    pub fn key(&self, x: i32, y: i32) -> Option<DepthKey> {
+        self.layout
+            .index(x, y)
+            .and_then(|i| self.buf.get(i).copied())
+    }
+}
+
+impl DepthTest for DepthBuffer<'_> {
+    const ENABLED: bool = true;
+
+    fn clip_rect(&self) -> Option<Rect> {
+        Some(self.layout.rect())
+    }
+
+    #[inline]
+    fn test_span<F: FnMut(u32, u32)>(
+        &mut self,
+        y: i32,
+        x: i32,
+        len: u32,
+        z: i32,
+        dz: i32,
+        mut pass: F,
+    ) {
+        let Some((skip, r)) = self.layout.span(y, x, len) else {
+            return;
+        };
+        let Some(row) = self.buf.get_mut(r) else {
+            return;
+        };
+        let mut z = z.wrapping_add(dz.wrapping_mul(skip as i32));
+        // Two tight loops (skip failing pixels, then store passing ones)
+        // instead of one loop with run state, each out of line so that on
+        // Cortex-M0 its few registers are not taken by the caller's
+        // state: this is the per-pixel cost of depth testing.
+        let n = row.len();
+        let mut i = 0;
+        while i < n {
+            let (failed, z1) = skip_failing(row.get(i..).unwrap_or(&[]), z, dz);
+            i += failed;
+            let (passed, z2) = store_passing(row.get_mut(i..).unwrap_or(&mut []), z1, dz);
+            z = z2;
+            if passed > 0 {
+                // i + passed ≤ n ≤ len, so these fit in u32.
+                pass(skip + i as u32, passed as u32);
+            }
+            i += passed;
+        }
+    }
+}
+
+/// Counts leading pixels that fail (key ≥ stored); returns the count and
+/// the z after them. The span set-up keeps z within
+/// 0..=65535·256+255, so the shift gives the key exactly.
+#[inline(never)]
+fn skip_failing(row: &[DepthKey], mut z: i32, dz: i32) -> (usize, i32) {
+    let mut n = 0;
+    for &d in row {
+        if ((z >> DEPTH_FRAC_BITS) as DepthKey) < d {
+            break;
+        }
+        z = z.wrapping_add(dz);
+        n += 1;
+    }
+    (n, z)
+}
+
+/// Stores leading keys that pass (key < stored); returns the count and
+/// the z after them.
+#[inline(never)]
+fn store_passing(row: &mut [DepthKey], mut z: i32, dz: i32) -> (usize, i32) {
+    let mut n = 0;
+    for d in row {
+        let key = (z >> DEPTH_FRAC_BITS) as DepthKey;
+        if key >= *d {
+            break;
+        }
+        *d = key;
+        z = z.wrapping_add(dz);
+        n += 1;
+    }
+    (n, z)
+}

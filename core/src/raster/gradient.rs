@@ -1,0 +1,138 @@
+//! Plane equations for interpolated quantities (depth, intensity, texel
+//! coordinates), set up once per polygon and evaluated once per span.
+//!
+//! A quantity `a` given at three vertices is the plane
+//! `a(X, Y) = a₀ + g_x·(X − x₀) + g_y·(Y − y₀)` over 28.4 screen
+//! coordinates, with `g_x = (Δa₁·e₂y − Δa₂·e₁y) / A`,
+//! `g_y = (Δa₂·e₁x − Δa₁·e₂x) / A` and `A = e₁ × e₂` (twice the signed
+//! area). Evaluating the plane at each span's first pixel centre, instead
+//! of stepping values down the edges, keeps every span independent of the
+//! rows before it (bands render bit-identically) and costs one
+//! multiply-add per quantity per span.
+
+/// Extra fractional bits kept in the gradients beyond the values' own.
+const EXTRA: u32 = 8;
+
+/// A plane over the screen for one quantity.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Gradient {
+    /// `a₀ << EXTRA`.
+    base: i64,
+    /// Change per 28.4 unit in x and y, with [`EXTRA`] extra bits.
+    gx: i64,
+    gy: i64,
+    x0: i32,
+    y0: i32,
+}
+
+/// The three vertices the planes are fitted through: positions (28.4) and
+/// the doubled signed area `A ≠ 0`.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Basis {
+    pub(super) p: [(i32, i32); 3],
+    pub(super) area2: i64,
+}
+
+impl Gradient {
+    /// Fits the plane through values `a` at the basis vertices.
+    ///
+    /// The numerators `Δa·e << EXTRA` can reach 2^71 (`Δa` < 2^33, an
+    /// edge component < 2^30), so the general path is i128. Polygons of
+    /// viewport size with 16.16 varyings stay far below 2^63, and take an
+    /// i64 path instead: on Cortex-M0 an i128 division is a long library
+    /// call, and this runs per polygon and per quantity. Both paths give
+    /// the same quotient (round to nearest, ties away from zero).
+    pub(super) fn new(b: &Basis, a: [i64; 3]) -> Self {
+        let (x0, y0) = b.p[0];
+        let e1 = (b.p[1].0 as i64 - x0 as i64, b.p[1].1 as i64 - y0 as i64);
+        let e2 = (b.p[2].0 as i64 - x0 as i64, b.p[2].1 as i64 - y0 as i64);
+        let da1 = a[1] - a[0];
+        let da2 = a[2] - a[0];
+        let area = b.area2;
+        let num_x = cross_shifted(da1, e2.1, da2, e1.1);
+        let num_y = cross_shifted(da2, e1.0, da1, e2.0);
+        let (gx, gy) = match (num_x, num_y) {
+            (Some(nx), Some(ny)) => (div_round(nx, area), div_round(ny, area)),
+            _ => {
+                let wide = |p: i64, q: i64, r: i64, s: i64| {
+                    ((p as i128 * q as i128) - (r as i128 * s as i128)) << EXTRA
+                };
+                (
+                    div_round_wide(wide(da1, e2.1, da2, e1.1), area),
+                    div_round_wide(wide(da2, e1.0, da1, e2.0), area),
+                )
+            }
+        };
+        Self {
+            base: a[0] << EXTRA,
+            gx,
+            gy,
+            x0,
+            y0,
+        }
+    }
+
+    /// Start value and per-pixel step for the span of `len` pixels whose
+    /// first pixel is column `x` on row `y`, with every value of the span
+    /// inside `[lo, hi]`.
+    ///
+    /// The plane's values at both ends are clamped into `[lo, hi]`; when
+    /// clamping changed anything (rounding at a vertex, a polygon that is
+    /// not planar in this quantity, or saturated arithmetic on a degenerate
+    /// sliver) the step is recomputed from the clamped ends, so the
+    /// per-pixel loop never leaves the range and needs no clamp of its own.
+    /// `hi − lo` must be below 2^31 so that the step fits in i32.
+    #[inline]
+    pub(super) fn span(&self, x: i32, y: i32, len: u32, lo: i32, hi: i32) -> (i32, i32) {
+        let px = (x as i64) * 16 + 8 - self.x0 as i64;
+        let py = (y as i64) * 16 + 8 - self.y0 as i64;
+        let v = self
+            .base
+            .saturating_add(self.gx.saturating_mul(px))
+            .saturating_add(self.gy.saturating_mul(py));
+        let start = v.saturating_add(1 << (EXTRA - 1)) >> EXTRA;
+        // One pixel is 16 units of 28.4: step = gx·16 >> EXTRA, rounded.
+        let n = len.saturating_sub(1) as i64;
+        let step = if n == 0 {
+            0
+        } else {
+            self.gx.saturating_add(1 << (EXTRA - 5)) >> (EXTRA - 4)
+        };
+        let end = start.saturating_add(step.saturating_mul(n));
+        let (lo64, hi64) = (lo as i64, hi as i64);
+        if start >= lo64 && start <= hi64 && end >= lo64 && end <= hi64 {
+            // In range at both ends, hence everywhere between; |step| ≤ hi − lo.
+            return (start as i32, step as i32);
+        }
+        let s = start.clamp(lo64, hi64);
+        let e = end.clamp(lo64, hi64);
+        let step = if n > 0 { (e - s) / n } else { 0 };
+        (s as i32, step as i32)
+    }
+}
+
+/// `(p·q − r·s) << EXTRA` if it fits in i64.
+#[inline]
+fn cross_shifted(p: i64, q: i64, r: i64, s: i64) -> Option<i64> {
+    let v = p.checked_mul(q)?.checked_sub(r.checked_mul(s)?)?;
+    // Keep one bit of headroom for the rounding offset in `div_round`.
+    (v.unsigned_abs() < 1 << (62 - EXTRA)).then_some(v << EXTRA)
+}
+
+/// `num / den` rounded to nearest, ties away from zero; `den ≠ 0`.
+#[inline]
+pub(super) fn div_round(num: i64, den: i64) -> i64 {
+    let half = (den / 2).abs();
+    // Ties away from zero: sign(num/den)·(|num| + |den|/2) / |den|, and
+    // truncating division keeps the sign. |num| < 2^62 and
+    // |half| < 2^62, so the sum does not overflow.
+    (num + num.signum() * half) / den
+}
+
+/// As [`div_round`] in i128, saturated to i64.
+pub(super) fn div_round_wide(num: i128, den: i64) -> i64 {
+    let den = den as i128;
+    let half = (den / 2).abs();
+    let q = (num + num.signum() * half) / den;
+    q.clamp(i64::MIN as i128, i64::MAX as i128) as i64
+}

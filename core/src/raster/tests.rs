@@ -1,0 +1,741 @@
+use super::*;
+use crate::target::{Band, Framebuffer};
+use crate::test_util::{MockTarget, oracle_covers, sp, sv};
+use proptest::prelude::*;
+use std::vec;
+use std::vec::Vec;
+
+fn flat(t: &mut MockTarget, c: char, poly: &[ScreenVertex<0>]) -> FillOutcome {
+    fill_polygon(t, &mut NoDepth, &Flat(c), poly)
+}
+
+#[test]
+fn flat_triangle_pattern() {
+    let mut t = MockTarget::new(8, 6);
+    // Left edge on x = 1 (pixel centres 0.5 and 1.5 either side), the
+    // hypotenuse crosses row 4's centre line at x = 6.4.
+    let out = flat(&mut t, '#', &[sv(1.0, 0.0), sv(7.0, 5.0), sv(1.0, 5.0)]);
+    assert_eq!(out, FillOutcome::Drawn);
+    t.assert_pattern(&[
+        ".#......", //
+        ".##.....", //
+        ".###....", //
+        ".####...", //
+        ".#####..", //
+        "........", //
+    ]);
+}
+
+#[test]
+fn edges_through_pixel_centres_follow_top_left_rule() {
+    // A square whose edges pass exactly through pixel centres 1.5 and 4.5:
+    // the left and top edges are drawn, the right and bottom are not.
+    let mut t = MockTarget::new(7, 7);
+    let sq = [sv(1.5, 1.5), sv(4.5, 1.5), sv(4.5, 4.5), sv(1.5, 4.5)];
+    flat(&mut t, '#', &sq);
+    t.assert_pattern(&[
+        ".......", //
+        ".###...", //
+        ".###...", //
+        ".###...", //
+        ".......", //
+        ".......", //
+        ".......", //
+    ]);
+    // Either winding gives the same pixels.
+    let mut u = MockTarget::new(7, 7);
+    let mut rev = sq;
+    rev.reverse();
+    flat(&mut u, '#', &rev);
+    assert_eq!(t.px, u.px);
+}
+
+#[test]
+fn shared_diagonal_is_covered_exactly_once() {
+    // Two triangles split a quad along a diagonal through pixel centres;
+    // MockTarget panics on any pixel written twice.
+    let mut t = MockTarget::new(6, 6);
+    let (a, b, c, d) = (sv(0.5, 0.5), sv(5.5, 0.5), sv(5.5, 5.5), sv(0.5, 5.5));
+    flat(&mut t, 'a', &[a, b, c]);
+    flat(&mut t, 'b', &[a, c, d]);
+    t.assert_pattern(&[
+        "aaaaa.", //
+        "baaaa.", //
+        "bbaaa.", //
+        "bbbaa.", //
+        "bbbba.", //
+        "......", //
+    ]);
+}
+
+#[test]
+fn pentagon_and_clip_to_target() {
+    // A convex pentagon partly outside the target on the left and top.
+    let mut t = MockTarget::new(6, 5);
+    let p = [
+        sv(-2.0, 2.0),
+        sv(2.0, -3.0),
+        sv(6.0, 1.0),
+        sv(5.0, 5.0),
+        sv(0.0, 5.0),
+    ];
+    flat(&mut t, '#', &p);
+    t.assert_pattern(&[
+        "#####.", //
+        "######", //
+        "######", //
+        "#####.", //
+        "#####.", //
+    ]);
+}
+
+#[test]
+fn gouraud_pattern() {
+    // Intensity 0 on the left edge, 255 on the right, ramp to digits 0..9.
+    let mut ramp = ['?'; 256];
+    for (i, c) in ramp.iter_mut().enumerate() {
+        *c = char::from(b'0' + (i * 10 / 256) as u8);
+    }
+    let v = |x: f64, y: f64, i: i32| ScreenVertex::new(sp(x), sp(y), 0, [i << 16]);
+    let mut t = MockTarget::new(10, 3);
+    let quad = [
+        v(0.0, 0.0, 0),
+        v(10.0, 0.0, 255),
+        v(10.0, 3.0, 255),
+        v(0.0, 3.0, 0),
+    ];
+    fill_polygon(&mut t, &mut NoDepth, &Gouraud::new(&ramp), &quad);
+    t.assert_pattern(&[
+        "0123456789", //
+        "0123456789", //
+        "0123456789", //
+    ]);
+}
+
+#[test]
+fn gouraud_values_never_leave_the_ramp() {
+    // Out-of-range varyings (intensity beyond 255 and below 0) are clamped
+    // per span; the ramp lookup cannot index outside 256 entries anyway,
+    // but colours must be the clamped ones.
+    let mut ramp = ['m'; 256];
+    ramp[0] = 'L';
+    ramp[255] = 'H';
+    let v = |x: f64, y: f64, i: i32| ScreenVertex::new(sp(x), sp(y), 0, [i]);
+    let mut t = MockTarget::new(4, 2);
+    let quad = [
+        v(0.0, 0.0, i32::MIN),
+        v(4.0, 0.0, i32::MAX),
+        v(4.0, 2.0, i32::MAX),
+        v(0.0, 2.0, i32::MIN),
+    ];
+    fill_polygon(&mut t, &mut NoDepth, &Gouraud::new(&ramp), &quad);
+    for c in &t.px {
+        assert!(['L', 'm', 'H'].contains(c));
+    }
+    assert_eq!(t.px[0], 'L');
+    assert_eq!(t.px[3], 'H');
+}
+
+#[test]
+fn depth_test_is_order_independent() {
+    let q = |x0: f64, y0: f64, x1: f64, y1: f64, z: u16| {
+        [
+            ScreenVertex::new(sp(x0), sp(y0), z, []),
+            ScreenVertex::new(sp(x1), sp(y0), z, []),
+            ScreenVertex::new(sp(x1), sp(y1), z, []),
+            ScreenVertex::new(sp(x0), sp(y1), z, []),
+        ]
+    };
+    let near = q(2.0, 1.0, 6.0, 4.0, 100);
+    let far = q(0.0, 0.0, 5.0, 3.0, 200);
+    let expected = [
+        "fffff...", //
+        "ffnnnn..", //
+        "ffnnnn..", //
+        "..nnnn..", //
+        "........", //
+    ];
+    for near_first in [true, false] {
+        let mut t = MockTarget::new(8, 5);
+        // Drawing near-then-far never overdraws; far-then-near must.
+        t.allow_overdraw = !near_first;
+        let mut zb = [u16::MAX; 40];
+        let mut depth = DepthBuffer::new(&mut zb, 8, 5, 8, 0).unwrap();
+        let order = if near_first {
+            [(near, 'n'), (far, 'f')]
+        } else {
+            [(far, 'f'), (near, 'n')]
+        };
+        for (poly, c) in order {
+            fill_polygon(&mut t, &mut depth, &Flat(c), &poly);
+        }
+        t.assert_pattern(&expected);
+        assert_eq!(depth.key(3, 2), Some(100));
+        assert_eq!(depth.key(0, 0), Some(200));
+        assert_eq!(depth.key(7, 4), Some(u16::MAX));
+    }
+}
+
+#[test]
+fn depth_interpolates_across_a_tilted_polygon() {
+    // z from 0 at x = 0 to 65535 at x = 16 along the span; a flat polygon
+    // at key 32768 wins on the far half only.
+    let mut zb = [u16::MAX; 16];
+    let mut depth = DepthBuffer::new(&mut zb, 16, 1, 16, 0).unwrap();
+    let mut t = MockTarget::new(16, 1);
+    t.allow_overdraw = true;
+    let tilt = [
+        ScreenVertex::new(0, 0, 0, []),
+        ScreenVertex::new(sp(16.0), 0, 65535, []),
+        ScreenVertex::new(sp(16.0), sp(1.0), 65535, []),
+        ScreenVertex::new(0, sp(1.0), 0, []),
+    ];
+    fill_polygon(&mut t, &mut depth, &Flat('t'), &tilt);
+    let mut wall = tilt;
+    for v in &mut wall {
+        v.z = 32768;
+    }
+    fill_polygon(&mut t, &mut depth, &Flat('w'), &wall);
+    t.assert_pattern(&["ttttttttwwwwwwww"]);
+}
+
+#[test]
+fn degenerate_and_extreme_input() {
+    let mut t = MockTarget::new(8, 8);
+    assert_eq!(flat(&mut t, '#', &[]), FillOutcome::Empty);
+    assert_eq!(
+        flat(&mut t, '#', &[sv(1.0, 1.0), sv(5.0, 5.0)]),
+        FillOutcome::Empty
+    );
+    // Collinear and repeated vertices: zero area.
+    let line = [sv(0.0, 0.0), sv(4.0, 4.0), sv(8.0, 8.0), sv(4.0, 4.0)];
+    assert_eq!(flat(&mut t, '#', &line), FillOutcome::Empty);
+    let same = [sv(3.0, 3.0); 5];
+    assert_eq!(flat(&mut t, '#', &same), FillOutcome::Empty);
+    // Beyond the coordinate limit: rejected, nothing drawn.
+    let huge = [
+        ScreenVertex::new(i32::MIN, 0, 0, []),
+        ScreenVertex::new(i32::MAX, i32::MAX, 0, []),
+        ScreenVertex::new(0, i32::MAX, 0, []),
+    ];
+    assert_eq!(flat(&mut t, '#', &huge), FillOutcome::Rejected);
+    assert!(t.px.iter().all(|&c| c == '.'));
+    // At the limit: a triangle covering the whole target, exactly once.
+    let l = COORD_LIMIT;
+    let big = [
+        ScreenVertex::new(-l, -l, 0, []),
+        ScreenVertex::new(l, 0, 0, []),
+        ScreenVertex::new(0, l, 0, []),
+    ];
+    assert_eq!(flat(&mut t, '#', &big), FillOutcome::Drawn);
+    assert!(t.px.iter().all(|&c| c == '#'));
+}
+
+#[test]
+fn sliver_with_extreme_varyings_stays_in_range() {
+    // A near-degenerate, very long sliver: gradients are huge and the
+    // per-span evaluation saturates; values must still be clamped.
+    let mut ramp = ['x'; 256];
+    ramp[0] = 'a';
+    ramp[255] = 'b';
+    let mut t = MockTarget::new(32, 32);
+    let l = COORD_LIMIT;
+    let poly = [
+        ScreenVertex::new(-l, -l, 0, [0]),
+        ScreenVertex::new(l, l, 0, [i32::MAX]),
+        ScreenVertex::new(l, l - 1, 0, [i32::MIN]),
+    ];
+    fill_polygon(&mut t, &mut NoDepth, &Gouraud::new(&ramp), &poly);
+}
+
+fn render_frame(w: u16, h: u16, polys: &[Vec<ScreenVertex<1>>], ramp: &[u8; 256]) -> Vec<u8> {
+    let mut buf = vec![0u8; w as usize * h as usize];
+    let mut zb = vec![u16::MAX; w as usize * h as usize];
+    let mut fb = Framebuffer::new(&mut buf, w, h, w as usize).unwrap();
+    let mut depth = DepthBuffer::new(&mut zb, w, h, w as usize, 0).unwrap();
+    for p in polys {
+        fill_polygon(&mut fb, &mut depth, &Gouraud::new(ramp), p);
+    }
+    buf
+}
+
+fn render_bands(
+    w: u16,
+    h: u16,
+    rows: u16,
+    polys: &[Vec<ScreenVertex<1>>],
+    ramp: &[u8; 256],
+) -> Vec<u8> {
+    let mut out = Vec::new();
+    let mut buf = vec![0u8; w as usize * rows as usize];
+    let mut zb = vec![0u16; w as usize * rows as usize];
+    let mut band = Band::new(&mut buf, w, rows, w as usize, 0).unwrap();
+    let mut depth = DepthBuffer::new(&mut zb, w, rows, w as usize, 0).unwrap();
+    let mut y0 = 0;
+    while y0 < h as i32 {
+        band.move_to(y0).unwrap();
+        depth.move_to(y0).unwrap();
+        band.clear(0);
+        depth.clear();
+        for p in polys {
+            fill_polygon(&mut band, &mut depth, &Gouraud::new(ramp), p);
+        }
+        let n = (h as i32 - y0).min(rows as i32) as usize * w as usize;
+        out.extend_from_slice(&band.as_slice()[..n]);
+        y0 += rows as i32;
+    }
+    out
+}
+
+fn ramp_u8() -> [u8; 256] {
+    core::array::from_fn(|i| i as u8)
+}
+
+#[test]
+fn bands_match_full_frame() {
+    let v = |x: f64, y: f64, z: u16, i: i32| ScreenVertex::new(sp(x), sp(y), z, [i << 16]);
+    let polys = vec![
+        vec![
+            v(-3.0, 2.3, 500, 10),
+            v(30.7, 5.1, 9000, 250),
+            v(12.2, 37.9, 100, 128),
+        ],
+        vec![
+            v(5.0, 5.0, 50, 0),
+            v(25.0, 7.0, 60000, 255),
+            v(27.0, 30.0, 3000, 90),
+            v(3.0, 28.0, 20, 200),
+        ],
+    ];
+    let full = render_frame(32, 30, &polys, &ramp_u8());
+    for rows in [1, 3, 7, 16] {
+        assert_eq!(
+            full,
+            render_bands(32, 30, rows, &polys, &ramp_u8()),
+            "band height {rows}"
+        );
+    }
+    assert!(full.iter().any(|&p| p != 0));
+}
+
+/// Convex hull (Andrew's monotone chain, collinear points dropped) of
+/// points on an ellipse, rounded to 28.4: rounding alone can make the
+/// polygon slightly non-convex, which the fill rule does not cover.
+fn ellipse_poly(cx: i32, cy: i32, rx: i32, ry: i32, angles: &[f64]) -> Vec<ScreenVertex<0>> {
+    let mut pts: Vec<(i64, i64)> = angles
+        .iter()
+        .map(|t| {
+            (
+                cx as i64 + (rx as f64 * t.cos()).round() as i64,
+                cy as i64 + (ry as f64 * t.sin()).round() as i64,
+            )
+        })
+        .collect();
+    convex_hull(&mut pts)
+        .into_iter()
+        .map(|(x, y)| ScreenVertex::new(x as i32, y as i32, 0, []))
+        .collect()
+}
+
+fn convex_hull(pts: &mut Vec<(i64, i64)>) -> Vec<(i64, i64)> {
+    pts.sort();
+    pts.dedup();
+    if pts.len() < 3 {
+        return pts.clone();
+    }
+    let cross = |o: (i64, i64), a: (i64, i64), b: (i64, i64)| {
+        (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
+    };
+    let mut h: Vec<(i64, i64)> = Vec::new();
+    for pass in 0..2 {
+        let start = h.len();
+        let it: Vec<(i64, i64)> = if pass == 0 {
+            pts.clone()
+        } else {
+            pts.iter().rev().copied().collect()
+        };
+        for p in it {
+            while h.len() >= start + 2 && cross(h[h.len() - 2], h[h.len() - 1], p) <= 0 {
+                h.pop();
+            }
+            h.push(p);
+        }
+        h.pop();
+    }
+    h
+}
+
+/// Renders `polys` into a `w`×`h` target that counts writes (and panics
+/// out of bounds) and compares every pixel's count with the oracle's.
+fn check_against_oracle(w: i32, h: i32, polys: &[Vec<ScreenVertex<0>>]) {
+    let mut t = MockTarget::new(w, h);
+    t.allow_overdraw = true;
+    for p in polys {
+        fill_polygon(&mut t, &mut NoDepth, &Flat('#'), p);
+    }
+    for j in 0..h {
+        for i in 0..w {
+            let want: u32 = polys
+                .iter()
+                .map(|p| oracle_covers(p, i as i64, j as i64) as u32)
+                .sum();
+            let got = t.writes[(j * w + i) as usize];
+            assert_eq!(got, want, "pixel ({i}, {j})");
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    #[test]
+    fn random_convex_polygons_match_oracle(
+        cx in -200i32..600, cy in -200i32..600,
+        rx in 0i32..900, ry in 0i32..900,
+        angles in proptest::collection::vec(0.0f64..core::f64::consts::TAU, 3..9),
+    ) {
+        let p = ellipse_poly(cx, cy, rx, ry, &angles);
+        check_against_oracle(24, 20, &[p]);
+    }
+}
+
+/// A jittered grid of `nx`×`ny` cells, each split into two triangles along
+/// alternating diagonals; the jitter (below a quarter cell) keeps every
+/// triangle positively oriented, so the mesh tiles its area.
+fn grid_mesh(
+    ox: i32,
+    oy: i32,
+    cell: i32,
+    nx: usize,
+    ny: usize,
+    jitter: &[(i32, i32)],
+) -> Vec<Vec<ScreenVertex<0>>> {
+    let vid = |i: usize, j: usize| {
+        let (jx, jy) = jitter[(j * (nx + 1) + i) % jitter.len()];
+        let jx = jx.rem_euclid(cell / 4 + 1) - cell / 8;
+        let jy = jy.rem_euclid(cell / 4 + 1) - cell / 8;
+        ScreenVertex::new(ox + i as i32 * cell + jx, oy + j as i32 * cell + jy, 0, [])
+    };
+    let mut tris = Vec::new();
+    for j in 0..ny {
+        for i in 0..nx {
+            let (a, b, c, d) = (vid(i, j), vid(i + 1, j), vid(i + 1, j + 1), vid(i, j + 1));
+            if (i + j) % 2 == 0 {
+                tris.push(vec![a, b, c]);
+                tris.push(vec![a, c, d]);
+            } else {
+                tris.push(vec![a, b, d]);
+                tris.push(vec![b, c, d]);
+            }
+        }
+    }
+    tris
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    #[test]
+    fn grid_meshes_cover_each_pixel_once(
+        ox in -300i32..100, oy in -300i32..100,
+        cell in 4i32..200,
+        nx in 1usize..8, ny in 1usize..8,
+        jitter in proptest::collection::vec((0i32..1000, 0i32..1000), 1..40),
+    ) {
+        let mesh = grid_mesh(ox, oy, cell, nx, ny, &jitter);
+        check_against_oracle(24, 20, &mesh);
+        // The oracle itself says the mesh is disjoint; the check above
+        // compared per-pixel counts, so the raster's are at most one too.
+        let mut t = MockTarget::new(24, 20);
+        for p in &mesh {
+            fill_polygon(&mut t, &mut NoDepth, &Flat('#'), p);
+        }
+    }
+
+    #[test]
+    fn fans_cover_each_pixel_once(
+        cx in -100i32..500, cy in -100i32..400,
+        r in 1i32..2000,
+        steps in proptest::collection::vec(1u32..100, 3..12),
+    ) {
+        // Angles strictly increasing over one turn, each step < π.
+        let total: u32 = steps.iter().sum();
+        let mut acc = 0u32;
+        let mut ring = Vec::new();
+        for s in &steps {
+            if *s as f64 / total as f64 >= 0.5 {
+                return Ok(());
+            }
+            let t = core::f64::consts::TAU * acc as f64 / total as f64;
+            ring.push(ScreenVertex::<0>::new(
+                cx + (r as f64 * t.cos()).round() as i32,
+                cy + (r as f64 * t.sin()).round() as i32,
+                0,
+                [],
+            ));
+            acc += s;
+        }
+        let c = ScreenVertex::new(cx, cy, 0, []);
+        let fan: Vec<Vec<ScreenVertex<0>>> = (0..ring.len())
+            .map(|k| vec![c, ring[k], ring[(k + 1) % ring.len()]])
+            .collect();
+        check_against_oracle(30, 26, &fan);
+        let mut t = MockTarget::new(30, 26);
+        for p in &fan {
+            // Panics on overdraw.
+            fill_polygon(&mut t, &mut NoDepth, &Flat('#'), p);
+        }
+    }
+
+    #[test]
+    fn huge_triangles_match_oracle(
+        a in (-(1i32 << 27)..(1 << 27), -(1i32 << 27)..(1 << 27)),
+        b in (-(1i32 << 27)..(1 << 27), -(1i32 << 27)..(1 << 27)),
+        c in (-400i32..800, -400i32..800),
+    ) {
+        let tri = vec![
+            ScreenVertex::new(a.0, a.1, 0, []),
+            ScreenVertex::new(b.0, b.1, 0, []),
+            ScreenVertex::new(c.0, c.1, 0, []),
+        ];
+        check_against_oracle(32, 32, &[tri]);
+    }
+
+    #[test]
+    fn tiny_triangles_match_oracle(
+        x in 0i32..200, y in 0i32..200,
+        d in proptest::collection::vec((-20i32..20, -20i32..20), 2),
+    ) {
+        let tri = vec![
+            ScreenVertex::new(x, y, 0, []),
+            ScreenVertex::new(x + d[0].0, y + d[0].1, 0, []),
+            ScreenVertex::new(x + d[1].0, y + d[1].1, 0, []),
+        ];
+        check_against_oracle(14, 14, &[tri]);
+    }
+
+    #[test]
+    fn garbage_polygons_never_panic_or_escape(
+        pts in proptest::collection::vec((any::<i32>(), any::<i32>(), any::<u16>(), any::<i32>()), 0..12),
+        small in proptest::collection::vec((-600i32..600, -600i32..600), 0..12),
+    ) {
+        let mut ramp = ['g'; 256];
+        ramp[7] = 'h';
+        let mut zb = [u16::MAX; 20 * 16];
+        let mut depth = DepthBuffer::new(&mut zb, 20, 16, 20, 0).unwrap();
+        let mut t = MockTarget::new(20, 16);
+        t.allow_overdraw = true;
+        let big: Vec<ScreenVertex<1>> = pts
+            .iter()
+            .map(|&(x, y, z, v)| ScreenVertex::new(x >> (x as u32 % 8), y >> (y as u32 % 8), z, [v]))
+            .collect();
+        fill_polygon(&mut t, &mut depth, &Gouraud::new(&ramp), &big);
+        // Non-convex, self-intersecting small polygons: at most one span
+        // per row, inside the target (MockTarget panics otherwise).
+        let mut u = MockTarget::new(20, 16);
+        let sm: Vec<ScreenVertex<0>> = small.iter().map(|&(x, y)| ScreenVertex::new(x, y, 0, [])).collect();
+        fill_polygon(&mut u, &mut NoDepth, &Flat('#'), &sm);
+    }
+}
+
+#[test]
+fn rounded_division_ties_away_from_zero() {
+    use super::gradient::div_round;
+    assert_eq!(div_round(5, 2), 3);
+    assert_eq!(div_round(-5, 2), -3);
+    assert_eq!(div_round(5, -2), -3);
+    assert_eq!(div_round(-5, -2), 3);
+    assert_eq!(div_round(7, 3), 2);
+    assert_eq!(div_round(-7, 3), -2);
+    assert_eq!(div_round(0, -3), 0);
+}
+
+proptest! {
+    #[test]
+    fn narrow_and_wide_division_agree(num in -(1i64 << 61)..(1i64 << 61), den in any::<i64>()) {
+        use super::gradient::{div_round, div_round_wide};
+        let den = if den == 0 { 1 } else { den >> 3 | 1 };
+        prop_assert_eq!(div_round(num, den), div_round_wide(num as i128, den));
+        // Against exact rational rounding.
+        let q = div_round(num, den) as i128;
+        let (n, d) = (num as i128, den as i128);
+        // |n/d − q| ≤ ½  ⇔  |n − q·d| ≤ |d|/2
+        prop_assert!(2 * (n - q * d).abs() <= d.abs());
+    }
+}
+
+fn checker() -> [char; 16] {
+    // 4×4 texels: row j, column i is a letter from "abcd" + row offset.
+    core::array::from_fn(|k| char::from(b'a' + (k % 4) as u8 + 4 * (k / 4) as u8))
+}
+
+#[test]
+fn texture_validates_and_wraps() {
+    let t = [1u8, 2, 3, 4, 5, 6];
+    assert_eq!(
+        Texture::new(&t[..0], 0, 1, 0).unwrap_err(),
+        crate::target::BufferError::BadTextureSize
+    );
+    assert!(Texture::new(&t, 3, 3, 3).is_err());
+    let tex = Texture::new(&t, 3, 2, 3).unwrap();
+    assert_eq!(tex.sample::<Repeat>(-1, 0), 3);
+    assert_eq!(tex.sample::<Repeat>(4, 3), 5);
+    assert_eq!(tex.sample::<Clamp>(-7, 9), 4);
+    assert_eq!(tex.sample::<Clamp>(99, -9), 3);
+    // RepeatPow2 refuses a 3-wide texture but still samples in bounds.
+    assert!(AffineTexture::<u8, RepeatPow2>::new(tex).is_none());
+    assert!(AffineTexture::<u8, Repeat>::new(tex).is_some());
+    for i in -9..9 {
+        let _ = tex.sample::<RepeatPow2>(i, i * 7);
+    }
+    let t4 = [0u8; 8];
+    let tex = Texture::new(&t4, 4, 2, 4).unwrap();
+    assert!(AffineTexture::<u8, RepeatPow2>::new(tex).is_some());
+    assert_eq!(RepeatPow2::wrap(-1, 4), 3);
+    assert_eq!(RepeatPow2::wrap(9, 4), 1);
+}
+
+#[test]
+fn affine_texture_pattern() {
+    // u, v from 0 to 8 over an 8×8 square: the 4×4 texture tiles twice,
+    // each texel 1×1 pixel; with Clamp the second tile repeats the edge.
+    let tex_data = checker();
+    let tex = Texture::new(&tex_data, 4, 4, 4).unwrap();
+    let v = |x: f64, y: f64| ScreenVertex::new(sp(x), sp(y), 0, [sp(x) << 12, sp(y) << 12]);
+    let sq = [v(0.0, 0.0), v(8.0, 0.0), v(8.0, 8.0), v(0.0, 8.0)];
+    let mut t = MockTarget::new(8, 8);
+    let sh = AffineTexture::<char, RepeatPow2>::new(tex).unwrap();
+    fill_polygon(&mut t, &mut NoDepth, &sh, &sq);
+    t.assert_pattern(&[
+        "abcdabcd", //
+        "efghefgh", //
+        "ijklijkl", //
+        "mnopmnop", //
+        "abcdabcd", //
+        "efghefgh", //
+        "ijklijkl", //
+        "mnopmnop", //
+    ]);
+    let mut t = MockTarget::new(8, 8);
+    let sh = AffineTexture::<char, Clamp>::new(tex).unwrap();
+    fill_polygon(&mut t, &mut NoDepth, &sh, &sq);
+    t.assert_pattern(&[
+        "abcddddd", //
+        "efghhhhh", //
+        "ijklllll", //
+        "mnoppppp", //
+        "mnoppppp", //
+        "mnoppppp", //
+        "mnoppppp", //
+        "mnoppppp", //
+    ]);
+}
+
+#[test]
+fn perspective_texture_with_constant_depth_equals_affine() {
+    // q constant (½): (u·q, v·q, q) must give the same texels as (u, v).
+    let tex_data = checker();
+    let tex = Texture::new(&tex_data, 4, 4, 4).unwrap();
+    let q = 1 << (PERSPECTIVE_Q_BITS - 1);
+    let v = |x: f64, y: f64| ScreenVertex::new(sp(x), sp(y), 0, [sp(x) << 11, sp(y) << 11, q]);
+    let sq = [v(0.0, 0.0), v(8.0, 0.0), v(8.0, 8.0), v(0.0, 8.0)];
+    let mut exact = MockTarget::new(8, 8);
+    let sh = PerspectiveTexture::<char, RepeatPow2, 1>::new(tex).unwrap();
+    fill_polygon(&mut exact, &mut NoDepth, &sh, &sq);
+    let mut sub = MockTarget::new(8, 8);
+    let sh = PerspectiveTexture::<char, RepeatPow2, 3>::new(tex).unwrap();
+    fill_polygon(&mut sub, &mut NoDepth, &sh, &sq);
+    for t in [&exact, &sub] {
+        t.assert_pattern(&[
+            "abcdabcd", //
+            "efghefgh", //
+            "ijklijkl", //
+            "mnopmnop", //
+            "abcdabcd", //
+            "efghefgh", //
+            "ijklijkl", //
+            "mnopmnop", //
+        ]);
+    }
+}
+
+proptest! {
+    #[test]
+    fn depth_runs_match_per_pixel_reference(
+        stored in proptest::collection::vec(any::<u16>(), 1..40),
+        x in -10i32..50, len in 0u32..60,
+        z in 0i32..(65536 << 8), dz in -(1i32 << 16)..(1 << 16),
+    ) {
+        let w = stored.len();
+        let mut buf = stored.clone();
+        let mut d = DepthBuffer::new(&mut buf, w as u16, 1, w, 0).unwrap();
+        let mut runs = Vec::new();
+        d.test_span(0, x, len, z, dz, |off, n| runs.push((off, n)));
+        // Per pixel: pixel x+i has key (z + i·dz) >> 8 and passes if less
+        // than the stored key; inside the buffer only.
+        let mut want = stored.clone();
+        let mut pass = vec![false; len as usize];
+        for i in 0..len as i64 {
+            let col = x as i64 + i;
+            if col < 0 || col >= w as i64 {
+                continue;
+            }
+            let key = ((z as i64 + i * dz as i64) >> 8) as u16;
+            let c = col as usize;
+            if key < want[c] {
+                want[c] = key;
+                pass[i as usize] = true;
+            }
+        }
+        let mut got_pass = vec![false; len as usize];
+        let mut last_end = None;
+        for &(off, n) in &runs {
+            prop_assert!(n > 0);
+            // Maximal, ordered runs.
+            if let Some(e) = last_end {
+                prop_assert!(off > e);
+            }
+            for k in off..off + n {
+                got_pass[k as usize] = true;
+            }
+            last_end = Some(off + n);
+        }
+        prop_assert_eq!(got_pass, pass);
+        prop_assert_eq!(buf, want);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    /// Vertices on the half-pixel lattice (multiples of 8 in 28.4), so
+    /// that edges and vertices often pass exactly through pixel centres:
+    /// the ties the top-left rule decides. Fans around a lattice point
+    /// also check that the ties partition.
+    #[test]
+    fn lattice_polygons_match_oracle(
+        pts in proptest::collection::vec((-4i32..40, -4i32..40), 3..7),
+    ) {
+        let mut p: Vec<(i64, i64)> = pts.iter().map(|&(x, y)| (8 * x as i64, 8 * y as i64)).collect();
+        let hull: Vec<ScreenVertex<0>> = convex_hull(&mut p)
+            .into_iter()
+            .map(|(x, y)| ScreenVertex::new(x as i32, y as i32, 0, []))
+            .collect();
+        check_against_oracle(18, 18, core::slice::from_ref(&hull));
+        // Split the hull into a fan from its first vertex: every pixel
+        // of the hull exactly once.
+        if hull.len() >= 3 {
+            let fan: Vec<Vec<ScreenVertex<0>>> = (1..hull.len() - 1)
+                .map(|k| vec![hull[0], hull[k], hull[k + 1]])
+                .collect();
+            check_against_oracle(18, 18, &fan);
+            let mut whole = MockTarget::new(18, 18);
+            fill_polygon(&mut whole, &mut NoDepth, &Flat('#'), &hull);
+            let mut parts = MockTarget::new(18, 18);
+            for t in &fan {
+                fill_polygon(&mut parts, &mut NoDepth, &Flat('#'), t);
+            }
+            prop_assert_eq!(whole.px, parts.px);
+        }
+    }
+}

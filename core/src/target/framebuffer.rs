@@ -1,0 +1,231 @@
+//! Framebuffers over caller memory: a whole frame, or one band of it.
+
+use super::layout::{BufferError, Layout};
+use super::{Rect, Target};
+
+/// A frame of `C` pixels in a caller-supplied slice, row-major with a
+/// stride (elements from one row's start to the next).
+///
+/// # Guarantees
+///
+/// The shape is validated once by [`Framebuffer::new`]. After that **no
+/// method panics and none writes outside the slice**, whatever its
+/// arguments: spans and pixels outside `0..width` × `0..height` are
+/// clipped or ignored, and elements between `width` and `stride` (padding)
+/// are never written.
+#[derive(Debug)]
+pub struct Framebuffer<'a, C> {
+    buf: &'a mut [C],
+    layout: Layout,
+}
+
+impl<'a, C: Copy> Framebuffer<'a, C> {
+    /// Wraps `buf` as `width`×`height` pixels with `stride` elements per
+    /// row.
+    ///
+    /// # Errors
+    /// [`BufferError::StrideTooSmall`] if `stride < width`;
+    /// [`BufferError::TooShort`] if `buf.len() < stride·(height−1) + width`;
+    /// [`BufferError::Overflow`] if that size overflows `usize`.
+    pub fn new(
+        buf: &'a mut [C],
+        width: u16,
+        height: u16,
+        stride: usize,
+    ) -> Result<Self, BufferError> {
+        let layout = Layout::new(buf.len(), width, height, stride, 0)?;
+        Ok(Self { buf, layout })
+    }
+
+    /// Width in pixels.
+    #[must_use]
+    pub fn width(&self) -> u16 {
+        self.layout.width
+    }
+
+    /// Height in pixels.
+    #[must_use]
+    pub fn height(&self) -> u16 {
+        self.layout.height
+    }
+
+    /// The pixel at (x, y), or `None` outside the frame.
+    #[must_use]
+    pub fn pixel(&self, x: i32, y: i32) -> Option<C> {
+        self.layout
+            .index(x, y)
+            .and_then(|i| self.buf.get(i).copied())
+    }
+
+    /// Sets every pixel (not the stride padding) to `color`.
+    pub fn clear(&mut self, color: C) {
+        for y in 0..self.layout.height as i32 {
+            self.fill_solid(y, 0, self.layout.width as u32, color);
+        }
+    }
+
+    /// The underlying slice.
+    #[must_use]
+    pub fn as_slice(&self) -> &[C] {
+        self.buf
+    }
+}
+
+impl<C: Copy> Target for Framebuffer<'_, C> {
+    type Color = C;
+
+    fn clip_rect(&self) -> Rect {
+        self.layout.rect()
+    }
+
+    #[inline]
+    fn fill_solid(&mut self, y: i32, x: i32, len: u32, color: C) {
+        fill_solid(self.buf, &self.layout, y, x, len, color);
+    }
+
+    #[inline]
+    fn fill_with<F: FnMut() -> C>(&mut self, y: i32, x: i32, len: u32, colors: F) {
+        fill_with(self.buf, &self.layout, y, x, len, colors);
+    }
+}
+
+/// Rows `y0..y0+rows` of a taller frame, in a buffer that holds only those
+/// rows: render a 320×240 frame as fifteen 320×16 bands, pushing each to
+/// the display before rendering the next.
+///
+/// Coordinates given to [`Target`] methods are *frame* coordinates; the
+/// band keeps the rows it holds and clips everything else, so the scan
+/// converter produces exactly the pixels a full [`Framebuffer`] would have
+/// in those rows.
+///
+/// # Guarantees
+///
+/// As for [`Framebuffer`]: validated once by [`Band::new`]; no method
+/// panics or writes outside the slice afterwards, including after
+/// [`Band::move_to`].
+#[derive(Debug)]
+pub struct Band<'a, C> {
+    buf: &'a mut [C],
+    layout: Layout,
+}
+
+impl<'a, C: Copy> Band<'a, C> {
+    /// Wraps `buf` as `rows` rows of `width` pixels, `stride` apart,
+    /// holding frame rows `y0..y0+rows`.
+    ///
+    /// # Errors
+    /// As [`Framebuffer::new`]; also [`BufferError::Overflow`] if
+    /// `y0 + rows` overflows `i32`.
+    pub fn new(
+        buf: &'a mut [C],
+        width: u16,
+        rows: u16,
+        stride: usize,
+        y0: i32,
+    ) -> Result<Self, BufferError> {
+        let layout = Layout::new(buf.len(), width, rows, stride, y0)?;
+        Ok(Self { buf, layout })
+    }
+
+    /// Moves the band to hold frame rows `y0..y0+rows` (the contents are
+    /// kept; clear them if needed).
+    ///
+    /// # Errors
+    /// [`BufferError::Overflow`] if `y0 + rows` overflows `i32`; the band
+    /// is then unchanged.
+    pub fn move_to(&mut self, y0: i32) -> Result<(), BufferError> {
+        self.layout = Layout::new(
+            self.buf.len(),
+            self.layout.width,
+            self.layout.height,
+            self.layout.stride,
+            y0,
+        )?;
+        Ok(())
+    }
+
+    /// First frame row held.
+    #[must_use]
+    pub fn y0(&self) -> i32 {
+        self.layout.y0
+    }
+
+    /// Number of rows held.
+    #[must_use]
+    pub fn rows(&self) -> u16 {
+        self.layout.height
+    }
+
+    /// The pixel at frame position (x, y), or `None` outside the band.
+    #[must_use]
+    pub fn pixel(&self, x: i32, y: i32) -> Option<C> {
+        self.layout
+            .index(x, y)
+            .and_then(|i| self.buf.get(i).copied())
+    }
+
+    /// Sets every pixel of the band to `color`.
+    pub fn clear(&mut self, color: C) {
+        let y0 = self.layout.y0;
+        for y in y0..y0 + self.layout.height as i32 {
+            self.fill_solid(y, 0, self.layout.width as u32, color);
+        }
+    }
+
+    /// The underlying slice (row `y0` first).
+    #[must_use]
+    pub fn as_slice(&self) -> &[C] {
+        self.buf
+    }
+}
+
+impl<C: Copy> Target for Band<'_, C> {
+    type Color = C;
+
+    fn clip_rect(&self) -> Rect {
+        self.layout.rect()
+    }
+
+    #[inline]
+    fn fill_solid(&mut self, y: i32, x: i32, len: u32, color: C) {
+        fill_solid(self.buf, &self.layout, y, x, len, color);
+    }
+
+    #[inline]
+    fn fill_with<F: FnMut() -> C>(&mut self, y: i32, x: i32, len: u32, colors: F) {
+        fill_with(self.buf, &self.layout, y, x, len, colors);
+    }
+}
+
+#[inline]
+fn fill_solid<C: Copy>(buf: &mut [C], layout: &Layout, y: i32, x: i32, len: u32, color: C) {
+    if let Some((_, r)) = layout.span(y, x, len) {
+        // `get_mut` rather than indexing: the range is in bounds by the
+        // validation in `Layout::new`, and this keeps the no-panic promise
+        // checkable locally.
+        if let Some(row) = buf.get_mut(r) {
+            row.fill(color);
+        }
+    }
+}
+
+#[inline]
+fn fill_with<C: Copy, F: FnMut() -> C>(
+    buf: &mut [C],
+    layout: &Layout,
+    y: i32,
+    x: i32,
+    len: u32,
+    mut colors: F,
+) {
+    if let Some((skip, r)) = layout.span(y, x, len) {
+        for _ in 0..skip {
+            colors();
+        }
+        if let Some(row) = buf.get_mut(r) {
+            for px in row {
+                *px = colors();
+            }
+        }
+    }
+}

@@ -1,0 +1,189 @@
+use super::*;
+use crate::raster::{Flat, Gouraud, NoDepth, ScreenVertex, Shade, fill_polygon};
+use crate::test_util::{sp, sv};
+use embedded_graphics::Pixel;
+use embedded_graphics::draw_target::DrawTarget;
+use embedded_graphics::geometry::{OriginDimensions, Size};
+use embedded_graphics::mock_display::MockDisplay;
+use embedded_graphics::pixelcolor::{BinaryColor, Gray8, Rgb565, RgbColor};
+use embedded_graphics::primitives::Rectangle;
+use proptest::prelude::*;
+use std::vec;
+
+#[test]
+fn framebuffer_validates_shape_once() {
+    let mut buf = [0u8; 20];
+    assert_eq!(
+        Framebuffer::new(&mut buf, 5, 4, 4).unwrap_err(),
+        BufferError::StrideTooSmall
+    );
+    // stride·(h−1) + w = 6·3 + 5 = 23 > 20.
+    assert_eq!(
+        Framebuffer::new(&mut buf, 5, 4, 6).unwrap_err(),
+        BufferError::TooShort {
+            needed: 23,
+            len: 20
+        }
+    );
+    // The last row needs no padding: 5·3 + 5 = 20 fits exactly.
+    assert!(Framebuffer::new(&mut buf, 5, 4, 5).is_ok());
+    assert_eq!(
+        Framebuffer::new(&mut buf, 5, 4, usize::MAX).unwrap_err(),
+        BufferError::Overflow
+    );
+    assert_eq!(
+        Band::new(&mut buf, 5, 2, 5, i32::MAX).unwrap_err(),
+        BufferError::Overflow
+    );
+    // Zero-sized frames are valid and hold nothing.
+    let mut fb = Framebuffer::new(&mut buf, 0, 0, 0).unwrap();
+    fb.fill_solid(0, 0, 10, 7);
+    assert!(buf.iter().all(|&p| p == 0));
+}
+
+#[test]
+fn stride_padding_is_never_written() {
+    let mut buf = [0u8; 4 * 3];
+    let mut fb = Framebuffer::new(&mut buf, 3, 3, 4).unwrap();
+    fb.clear(1);
+    fb.fill_solid(1, -5, 100, 2);
+    fb.fill_with(2, 1, 10, || 3);
+    assert_eq!(buf, [1, 1, 1, 0, 2, 2, 2, 0, 1, 3, 3, 0]);
+}
+
+proptest! {
+    #[test]
+    fn framebuffer_methods_never_panic(
+        w in 0u16..9, h in 0u16..9, pad in 0usize..3, extra in 0usize..4,
+        ops in proptest::collection::vec((any::<i32>(), any::<i32>(), any::<u32>()), 0..20),
+    ) {
+        let stride = w as usize + pad;
+        let len = if h == 0 { extra } else { stride * (h as usize - 1) + w as usize + extra };
+        let mut buf = vec![0u8; len];
+        let mut fb = Framebuffer::new(&mut buf, w, h, stride).unwrap();
+        for &(x, y, n) in &ops {
+            fb.fill_solid(y, x, n, 1);
+            let mut k = 0u32;
+            // Colours stay aligned: pixel x gets the (x − x_start)-th value.
+            fb.fill_with(y, x, n.min(1000), || { k += 1; 2 });
+            let _ = fb.pixel(x, y);
+        }
+        // Padding and the tail past the last row stay untouched.
+        for (i, &p) in buf.iter().enumerate() {
+            let (row, col) = (i / stride.max(1), i % stride.max(1));
+            if col >= w as usize || row >= h as usize {
+                prop_assert_eq!(p, 0);
+            }
+        }
+    }
+}
+
+#[test]
+fn fill_with_keeps_colours_aligned_when_clipped() {
+    let mut buf = [0u8; 4];
+    let mut fb = Framebuffer::new(&mut buf, 4, 1, 4).unwrap();
+    let mut k = 0;
+    fb.fill_with(0, -2, 5, || {
+        k += 1;
+        k
+    });
+    // Pixels x = −2, −1 took values 1, 2; x = 0..3 got 3, 4, 5.
+    assert_eq!(buf, [3, 4, 5, 0]);
+}
+
+/// Forwards `fill_contiguous` and `fill_solid` to a `MockDisplay` (which
+/// panics on overdraw and out-of-bounds) and panics if anything falls back
+/// to per-pixel `draw_iter`.
+struct NoPerPixel(MockDisplay<BinaryColor>, u32);
+
+impl OriginDimensions for NoPerPixel {
+    fn size(&self) -> Size {
+        Size::new(12, 8)
+    }
+}
+
+impl DrawTarget for NoPerPixel {
+    type Color = BinaryColor;
+    type Error = core::convert::Infallible;
+    fn draw_iter<I: IntoIterator<Item = Pixel<BinaryColor>>>(
+        &mut self,
+        _: I,
+    ) -> Result<(), Self::Error> {
+        panic!("per-pixel draw_iter used");
+    }
+    fn fill_contiguous<I: IntoIterator<Item = BinaryColor>>(
+        &mut self,
+        area: &Rectangle,
+        colors: I,
+    ) -> Result<(), Self::Error> {
+        self.1 += 1;
+        assert_eq!(area.size.height, 1, "one row per span");
+        self.0.fill_contiguous(area, colors)
+    }
+    fn fill_solid(&mut self, area: &Rectangle, color: BinaryColor) -> Result<(), Self::Error> {
+        self.1 += 1;
+        assert_eq!(area.size.height, 1, "one row per span");
+        self.0.fill_solid(area, color)
+    }
+}
+
+#[test]
+fn draw_target_sink_uses_span_fills_and_clips() {
+    let mut d = NoPerPixel(MockDisplay::new(), 0);
+    {
+        let mut sink = DrawTargetSink::new(&mut d);
+        assert_eq!(sink.clip_rect(), Rect::new(0, 0, 12, 8));
+        // Partly outside the 12×8 bounding box on the right and bottom.
+        // Hypotenuse x + y = 17: row j covers columns 2..16−j.
+        let tri = [sv(2.0, 1.0), sv(16.0, 1.0), sv(2.0, 15.0)];
+        fill_polygon(&mut sink, &mut NoDepth, &Flat(BinaryColor::On), &tri);
+        // Gouraud goes through fill_contiguous.
+        let ramp = [BinaryColor::Off; 256];
+        let v = |x: f64, y: f64| ScreenVertex::new(sp(x), sp(y), 0, [0]);
+        let q = [v(0.0, 0.0), v(2.0, 0.0), v(2.0, 1.0), v(0.0, 1.0)];
+        fill_polygon(&mut sink, &mut NoDepth, &Gouraud::new(&ramp), &q);
+        sink.finish().unwrap();
+    }
+    assert!(d.1 >= 8);
+    d.0.assert_pattern(&[
+        "..          ", //
+        "  ##########", //
+        "  ##########", //
+        "  ##########", //
+        "  ##########", //
+        "  ######### ", //
+        "  ########  ", //
+        "  #######   ", //
+    ]);
+}
+
+#[test]
+fn rgb565_and_gray8_framebuffers() {
+    let mut buf = [Rgb565::BLACK; 16];
+    let mut fb = Framebuffer::new(&mut buf, 4, 4, 4).unwrap();
+    let ramp = Rgb565::RED.ramp();
+    let v = |x: f64, y: f64, i: i32| ScreenVertex::new(sp(x), sp(y), 0, [i << 16]);
+    let q = [
+        v(0.0, 0.0, 0),
+        v(4.0, 0.0, 255),
+        v(4.0, 4.0, 255),
+        v(0.0, 4.0, 0),
+    ];
+    fill_polygon(&mut fb, &mut NoDepth, &Gouraud::new(&ramp), &q);
+    // Red increases left to right, green and blue stay zero.
+    let reds: std::vec::Vec<u8> = (0..4).map(|x| fb.pixel(x, 2).unwrap().r()).collect();
+    assert!(reds.windows(2).all(|w| w[0] < w[1]), "{reds:?}");
+    assert!(buf.iter().all(|c| c.g() == 0 && c.b() == 0));
+
+    let mut g = [Gray8::new(0); 6];
+    let mut fb = Framebuffer::new(&mut g, 3, 2, 3).unwrap();
+    fill_polygon(
+        &mut fb,
+        &mut NoDepth,
+        &Flat(Gray8::new(200)),
+        &[sv(0.0, 0.0), sv(3.0, 0.0), sv(0.0, 2.0)],
+    );
+    assert_eq!(fb.pixel(0, 0), Some(Gray8::new(200)));
+    assert_eq!(fb.pixel(2, 1), Some(Gray8::new(0)));
+    assert_eq!(Gray8::new(255).ramp()[128], Gray8::new(128));
+}

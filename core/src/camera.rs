@@ -331,6 +331,8 @@ impl<S: Scalar> Projection<S> {
                 p.z,
             ),
             ProjectionKind::Perspective { focus } => {
+                // Written so that NaN depth is rejected too.
+                #[allow(clippy::neg_cmp_op_on_partial_ord)]
                 if !(p.z > S::ZERO) {
                     return None;
                 }

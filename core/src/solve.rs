@@ -312,6 +312,7 @@ impl<S: Scalar, const N: usize> Lu<S, N> {
 
     /// Solves `Aᵀ z = c` with the same factors: `Uᵀ w = c`, `Lᵀ v = w`,
     /// `z = Pᵀ v`. Returns `None` on overflow.
+    #[allow(clippy::needless_range_loop)] // index form mirrors the LU algebra
     fn solve_transposed(&self, c: &[S; N]) -> Option<[S; N]> {
         let mut overflow = false;
         let mut w = *c;

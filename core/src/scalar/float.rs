@@ -100,7 +100,7 @@ macro_rules! impl_float {
             fn to_subpixel(self, frac_bits: u32) -> Option<i32> {
                 let v = $round(self * (1u32 << frac_bits.min(24)) as $t);
                 // Strict bounds: 2^31 is exactly representable, i32::MAX is not.
-                if v.is_finite() && v >= -2_147_483_648.0 && v < 2_147_483_648.0 {
+                if v.is_finite() && (-2_147_483_648.0..2_147_483_648.0).contains(&v) {
                     Some(v as i32)
                 } else {
                     None

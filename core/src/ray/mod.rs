@@ -41,7 +41,7 @@ mod screen;
 mod slab;
 mod sphere;
 mod triangle;
-mod wide;
+pub(crate) mod wide;
 
 pub use nearest::{Hit, Intersect, Object, ObjectError, SurfaceHit, nearest_hit};
 pub use plane::{Plane, PlaneError};

@@ -47,6 +47,9 @@ impl fmt::Display for SphereError {
 impl core::error::Error for SphereError {}
 
 /// The real roots of the ray/sphere quadratic (any sign of `t`), ascending.
+///
+/// A root whose value is beyond the range of `S` is reported as `S::MAX`
+/// (or `S::MIN`), so the other root of a huge sphere is still usable.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Roots<S> {
     /// The line misses the sphere (or the computation overflowed).
@@ -133,7 +136,16 @@ impl<S: Scalar> Sphere<S> {
         let f_len = fs.length();
         let c = (f_len - r) * (f_len + r);
         let q = if b >= S::ZERO { -(b + sq) } else { -(b - sq) };
-        let back = |t: S| t.checked_mul(s)?.checked_div(len);
+        // Back to the caller's units; a root beyond the range saturates
+        // (so the near root of a huge sphere survives its far root).
+        let back = |t: S| {
+            let sat = if t > S::ZERO { S::MAX } else { S::MIN };
+            Some(
+                t.checked_mul(s)
+                    .and_then(|x| x.checked_div(len))
+                    .unwrap_or(sat),
+            )
+        };
         if q == S::ZERO {
             // b = 0 and Δ = 0: the origin is the tangent point.
             return Some(Roots::One(S::ZERO));

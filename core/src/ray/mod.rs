@@ -19,6 +19,8 @@
 //! | `sphere.rs` | [`Sphere`] with the stable quadratic of Ray Tracing Gems ch. 7 |
 //! | `triangle.rs` | [`Triangle`], [`Mesh`] and the watertight test of Woop, Benthin and Wald (JCGT 2013) |
 //! | `nearest.rs` | [`Intersect`], [`Object`] (shape + pose), [`nearest_hit`] and the [`Hit`] record |
+//! | `bounds.rs` | [`Aabb`] with a conservative slab test; [`Bounded`] puts a box around any shape |
+//! | `grid.rs` | [`Grid`]: uniform grid in caller storage, Amanatides–Woo 3D DDA, [`Mailbox`], early exit |
 //! | `wide.rs` (private) | overflow-checked dot products and the higher-precision fallbacks |
 //!
 //! # Distances
@@ -34,6 +36,8 @@
 //! would divide by zero, become non-finite, or overflow fixed point (the
 //! checked path of [`Scalar`](crate::scalar::Scalar)) is reported as no hit.
 
+mod bounds;
+mod grid;
 mod nearest;
 mod plane;
 mod polygon;
@@ -43,6 +47,8 @@ mod sphere;
 mod triangle;
 pub(crate) mod wide;
 
+pub use bounds::{Aabb, AabbError, Bounded};
+pub use grid::{Grid, GridError, Mailbox};
 pub use nearest::{Hit, Intersect, Object, ObjectError, SurfaceHit, nearest_hit};
 pub use plane::{Plane, PlaneError};
 pub use polygon::{Edge2, InclusionTest, Polygon, PolygonError};

@@ -3,6 +3,7 @@
 //! type's `EPSILON`.
 
 mod basics;
+mod grid;
 mod inclusion;
 mod nearest;
 mod sphere;

@@ -10,7 +10,8 @@ extern crate std;
 use std::vec;
 use std::vec::Vec;
 
-const CAP: usize = 1100;
+/// Room for 1024 generated vertices plus inserted collinear midpoints.
+const CAP: usize = 2100;
 type P = (i64, i64);
 
 /// Largest coordinate magnitude for which every edge function is exact in
@@ -151,6 +152,68 @@ fn convex(rng: &mut Rng, n: usize, r: i64) -> Vec<P> {
     }
 }
 
+/// Random convex polygon with up to `n` vertices and no two edges
+/// parallel: sum distinct primitive edge vectors (and their negations, so
+/// the walk closes) in angular order. This reaches hundreds of vertices on
+/// small grids, where hulls of random points stay small.
+fn convex_by_edges(rng: &mut Rng, n: usize, r: i64) -> Vec<P> {
+    let mut m = 1;
+    loop {
+        // Largest m whose polygon comfortably fits: extent ≈ count·m/π.
+        let count = (m + 1) * (m + 1) * 2;
+        if count.min(n) as i64 * (m as i64 + 1) > r / 2 || count >= 2 * n {
+            break;
+        }
+        m += 1;
+    }
+    let m = m.max(1) as i64;
+    let mut dirs: Vec<P> = Vec::new();
+    for dx in -m..=m {
+        for dy in 0..=m {
+            if (dy > 0 || dx > 0) && gcd(dx.abs(), dy) == 1 {
+                dirs.push((dx, dy));
+            }
+        }
+    }
+    // A random subset of about n/2 directions (at least two, not parallel).
+    let keep = (n / 2).clamp(2, dirs.len());
+    for i in 0..dirs.len() {
+        let j = rng.range(i as i64, dirs.len() as i64 - 1) as usize;
+        dirs.swap(i, j);
+    }
+    dirs.truncate(keep);
+    let mut all: Vec<P> = dirs.iter().flat_map(|&(x, y)| [(x, y), (-x, -y)]).collect();
+    all.sort_by(|&a, &b| {
+        let ha = (a.1 < 0 || (a.1 == 0 && a.0 < 0)) as u8;
+        let hb = (b.1 < 0 || (b.1 == 0 && b.0 < 0)) as u8;
+        ha.cmp(&hb).then_with(|| 0.cmp(&cross((0, 0), a, b)))
+    });
+    let mut pts = Vec::with_capacity(all.len());
+    let mut p = (0i64, 0i64);
+    for d in all {
+        pts.push(p);
+        p = (p.0 + d.0, p.1 + d.1);
+    }
+    let (minx, maxx) = (
+        pts.iter().map(|p| p.0).min().unwrap(),
+        pts.iter().map(|p| p.0).max().unwrap(),
+    );
+    let (miny, maxy) = (
+        pts.iter().map(|p| p.1).min().unwrap(),
+        pts.iter().map(|p| p.1).max().unwrap(),
+    );
+    let (cx, cy) = ((minx + maxx) / 2, (miny + maxy) / 2);
+    let pts: Vec<P> = pts
+        .iter()
+        .map(|&(x, y)| (2 * (x - cx), 2 * (y - cy)))
+        .collect();
+    assert!(
+        pts.iter().all(|p| p.0.abs() <= r && p.1.abs() <= r),
+        "generator range"
+    );
+    with_midpoints(rng, pts)
+}
+
 fn with_midpoints(rng: &mut Rng, pts: Vec<P>) -> Vec<P> {
     let n = pts.len();
     let mut out = Vec::with_capacity(2 * n);
@@ -164,7 +227,7 @@ fn with_midpoints(rng: &mut Rng, pts: Vec<P>) -> Vec<P> {
     if rng.range(0, 1) == 0 {
         out.reverse();
     }
-    out.truncate(CAP);
+    assert!(out.len() <= CAP);
     out
 }
 
@@ -210,7 +273,7 @@ fn slab_storage<S: Scalar>(poly: &Polygon<S, CAP>) -> (Vec<S>, Vec<u32>, Vec<u32
     (ys, starts, vec![0u32; needed])
 }
 
-fn check_polygon<S: Scalar>(rng: &mut Rng, pts: &[P], r: i64, axis: usize, random: usize) {
+fn check_polygon<S: Scalar>(rng: &mut Rng, pts: &[P], r: i64, axis: usize, random: usize) -> usize {
     let poly = to_poly::<S>(pts, axis);
     let (mut ys, mut starts, mut edges) = slab_storage(&poly);
     let slabs = SlabIndex::build(&poly, &mut ys, &mut starts, &mut edges).expect("sized");
@@ -230,6 +293,7 @@ fn check_polygon<S: Scalar>(rng: &mut Rng, pts: &[P], r: i64, axis: usize, rando
             poly.is_convex()
         );
     }
+    poly.edges().len()
 }
 
 fn sizes(rng: &mut Rng, max: usize) -> usize {
@@ -297,29 +361,41 @@ fn agreement_random_convex<S: Scalar>() {
     let mut rng = Rng::new(0xC0_4E_E5);
     let r = grid_limit::<S>();
     let cases = if is_f64::<S>() { 120 } else { 80 };
+    let mut largest = 0;
     for case in 0..cases {
         let n = if case < 3 {
             1024
         } else {
             sizes(&mut rng, 1024)
         };
-        let pts = convex(&mut rng, n, r);
+        let pts = if case % 2 == 0 {
+            convex_by_edges(&mut rng, n, r)
+        } else {
+            convex(&mut rng, n, r)
+        };
         let axis = case % 3;
         let poly = to_poly::<S>(&pts, axis);
         assert!(poly.is_convex(), "{pts:?}");
-        check_polygon::<S>(&mut rng, &pts, r, axis, 100);
+        largest = largest.max(check_polygon::<S>(&mut rng, &pts, r, axis, 100));
     }
+    std::println!("{}: largest convex polygon {largest} vertices", S::NAME);
 }
 
 fn agreement_random_simple<S: Scalar>() {
     let mut rng = Rng::new(0x51_3B_1E);
     let r = grid_limit::<S>();
     let cases = if is_f64::<S>() { 120 } else { 80 };
+    let mut largest = 0;
     for case in 0..cases {
-        let n = if case < 2 { 700 } else { sizes(&mut rng, 700) };
+        let n = if case < 2 {
+            1024
+        } else {
+            sizes(&mut rng, 1024)
+        };
         let pts = star(&mut rng, n, r);
-        check_polygon::<S>(&mut rng, &pts, r, case % 3, 100);
+        largest = largest.max(check_polygon::<S>(&mut rng, &pts, r, case % 3, 100));
     }
+    std::println!("{}: largest simple polygon {largest} vertices", S::NAME);
 }
 
 /// A star polygon and the fan of triangles (0, vᵢ, vᵢ₊₁) partition the same

@@ -6,8 +6,10 @@
 //! (right) and v (down) and a viewer V; the ray for a pixel runs from V
 //! through the pixel's centre on the screen, `X = Q + t·d` with `t > 0`.
 //!
-//! Every concept lives in its own file, the same way for each primitive
-//! (construction with a small error enum, then `intersect`):
+//! Every concept lives in its own submodule, the same way for each
+//! primitive (construction with a small error enum, then `intersect`); the
+//! types are re-exported here. The submodule docs hold the details (e.g.
+//! the polygon [boundary policy](polygon#boundary-policy)).
 //!
 //! | file | what it holds |
 //! |---|---|
@@ -34,17 +36,17 @@
 //! Nothing here panics. Constructors reject NaN, ±∞, zero directions and
 //! degenerate shapes with an error enum; an intersection whose arithmetic
 //! would divide by zero, become non-finite, or overflow fixed point (the
-//! checked path of [`Scalar`](crate::scalar::Scalar)) is reported as no hit.
+//! checked path of [`Scalar`]) is reported as no hit.
 
-mod bounds;
-mod grid;
-mod nearest;
-mod plane;
-mod polygon;
-mod screen;
-mod slab;
-mod sphere;
-mod triangle;
+pub mod bounds;
+pub mod grid;
+pub mod nearest;
+pub mod plane;
+pub mod polygon;
+pub mod screen;
+pub mod slab;
+pub mod sphere;
+pub mod triangle;
 pub(crate) mod wide;
 
 pub use bounds::{Aabb, AabbError, Bounded};

@@ -140,8 +140,12 @@ impl<'a, S: Scalar> Grid<'a, S> {
             return Err(GridError::Empty);
         }
         let res = res.map(usize::from);
-        let cells = res[0] * res[1] * res[2];
-        if cells >= u32::MAX as usize || boxes.len() > u32::MAX as usize {
+        let cells = res[0]
+            .checked_mul(res[1])
+            .and_then(|c| c.checked_mul(res[2]))
+            .filter(|&c| c < u32::MAX as usize)
+            .ok_or(GridError::TooLarge)?;
+        if boxes.len() > u32::MAX as usize {
             return Err(GridError::TooLarge);
         }
         if cell_start.len() < cells + 1 {
@@ -164,26 +168,31 @@ impl<'a, S: Scalar> Grid<'a, S> {
             items: &[],
             prims: boxes.len(),
         };
+        // The total first (checked), so no per-cell counter can overflow.
+        let mut needed = 0usize;
+        for b in boxes {
+            let (lo, hi) = grid.cell_range(b);
+            let n = (hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
+            needed = needed
+                .checked_add(n)
+                .filter(|&t| t <= u32::MAX as usize)
+                .ok_or(GridError::TooLarge)?;
+        }
+        if items.len() < needed {
+            return Err(GridError::ItemStorage { needed });
+        }
         // Count per cell into cell_start[c + 1], then prefix sums.
         let cell_start = &mut cell_start[..=cells];
         cell_start.fill(0);
-        let mut needed = 0usize;
         for b in boxes {
             let (lo, hi) = grid.cell_range(b);
             for z in lo[2]..=hi[2] {
                 for y in lo[1]..=hi[1] {
                     for x in lo[0]..=hi[0] {
                         cell_start[grid.index([x, y, z]) + 1] += 1;
-                        needed += 1;
                     }
                 }
             }
-        }
-        if needed > u32::MAX as usize {
-            return Err(GridError::TooLarge);
-        }
-        if items.len() < needed {
-            return Err(GridError::ItemStorage { needed });
         }
         for c in 0..cells {
             cell_start[c + 1] += cell_start[c];

@@ -18,10 +18,11 @@
 //!   sorted distinct y values;
 //! - `starts`: at least n entries, slab k's edges are
 //!   `edges[starts[k]..starts[k + 1]]`;
-//! - `edges`: the total number of (slab, edge) pairs, at most
-//!   n·(n − 1)/2·2 = n·(n − 1) (each of the ≤ n − 1 slabs is crossed by at
-//!   most n edges), and usually far fewer; when the slice is too short
-//!   [`SlabError::EdgeStorage`] reports the exact number needed.
+//! - `edges`: the total number of (slab, edge) pairs: at most n·(n − 1),
+//!   since each of the ≤ n − 1 slabs is crossed by at most n edges (usually
+//!   far fewer). When the slice is
+//!   too short [`SlabError::EdgeStorage`] reports the exact number needed,
+//!   so a caller can size it with one failed call.
 //!
 //! Building is O(n²) time (plus a sort per slab) and is done once per
 //! polygon; a query is O(log n).

@@ -202,7 +202,64 @@ fn grid_errors<S: Scalar>() {
     assert!(grid.nearest(&ray, S::ZERO, &one, &mut mb).is_some());
 }
 
+/// Counts calls, to check that mailboxing tests a primitive once per ray
+/// although it is listed in many cells.
+struct Counting<S> {
+    sphere: Sphere<S>,
+    calls: core::cell::Cell<usize>,
+}
+
+impl<S: Scalar> Intersect<S> for Counting<S> {
+    fn intersect_ray(&self, ray: &Ray<S>, t_min: S) -> Option<SurfaceHit<S>> {
+        self.calls.set(self.calls.get() + 1);
+        self.sphere.intersect_ray(ray, t_min)
+    }
+}
+
+fn mailbox_tests_each_primitive_once<S: Scalar>() {
+    let big = Sphere::new(Vec3::<S>::ZERO, S::from_f64(5.0)).unwrap();
+    let small = Sphere::new(v3::<S>(0.0, 0.0, 20.0), S::ONE).unwrap();
+    let prims = [
+        Counting {
+            sphere: big,
+            calls: core::cell::Cell::new(0),
+        },
+        Counting {
+            sphere: small,
+            calls: core::cell::Cell::new(0),
+        },
+    ];
+    let boxes = [
+        Aabb::around_sphere(big.centre(), big.radius()),
+        Aabb::around_sphere(small.centre(), small.radius()),
+    ];
+    let mut starts = vec![0u32; 16 * 16 * 16 + 1];
+    let mut items = vec![0u32; 8192];
+    let grid = Grid::build(&boxes, [16, 16, 16], &mut starts, &mut items).unwrap();
+    let mut stamps = [0u32; 2];
+    let mut mb = Mailbox::new(&mut stamps);
+    // Along the axis from inside the big sphere: its far side is hit many
+    // cells later; the small sphere beyond must not be reported instead.
+    let ray = Ray::new(v3(0.0, 0.0, -0.5), v3(0.0, 0.0, 1.0)).unwrap();
+    let (i, h) = grid.nearest(&ray, S::ZERO, &prims, &mut mb).unwrap();
+    assert_eq!(i, 0);
+    assert!((h.t.to_f64() - 5.5).abs() < 1e3 * S::EPSILON.to_f64());
+    assert_eq!(prims[0].calls.get(), 1, "mailbox: one test per ray");
+    assert_eq!(
+        prims[1].calls.get(),
+        0,
+        "early exit before the small sphere"
+    );
+    // A second ray: the mailbox resets per ray.
+    let (i, _) = grid
+        .nearest(&ray, S::from_f64(6.0), &prims, &mut mb)
+        .unwrap();
+    assert_eq!(i, 1);
+    assert_eq!(prims[0].calls.get(), 2);
+}
+
 per_scalar!(
+    mailbox_tests_each_primitive_once,
     aabb_slab_cases,
     bounded_equals_unbounded,
     grid_equals_brute_force,

@@ -583,7 +583,44 @@ fn degenerate_polygons_are_errors<S: Scalar>() {
     }
 }
 
+/// `A·x + B·y + C` from `Edge2::coefficients` equals `Edge2::value`
+/// (exactly, on the integer grid).
+fn edge_equation_coefficients<S: Scalar>() {
+    let mut rng = Rng::new(8);
+    let r = grid_limit::<S>() / 4;
+    for _ in 0..500 {
+        let pts = [
+            (rng.range(-r, r), rng.range(-r, r)),
+            (rng.range(-r, r), rng.range(-r, r)),
+            (rng.range(-r, r), rng.range(-r, r)),
+        ];
+        let Ok(poly) = Polygon::<S, 3>::new(&[
+            Vec3::new(pt::<S>(pts[0]).x, pt::<S>(pts[0]).y, S::ZERO),
+            Vec3::new(pt::<S>(pts[1]).x, pt::<S>(pts[1]).y, S::ZERO),
+            Vec3::new(pt::<S>(pts[2]).x, pt::<S>(pts[2]).y, S::ZERO),
+        ]) else {
+            continue;
+        };
+        let p = (rng.range(-r, r), rng.range(-r, r));
+        for e in poly.edges() {
+            let (a, b, c) = e.coefficients().unwrap();
+            let q = pt::<S>(p);
+            assert_eq!(a * q.x + b * q.y + c, e.value(q).unwrap());
+            let exact = cross(
+                (e.a.x.to_f64() as i64, e.a.y.to_f64() as i64),
+                (
+                    (e.a.x + e.d.x).to_f64() as i64,
+                    (e.a.y + e.d.y).to_f64() as i64,
+                ),
+                p,
+            );
+            assert_eq!(e.value(q).unwrap().to_f64(), exact as f64);
+        }
+    }
+}
+
 per_scalar!(
+    edge_equation_coefficients,
     oracle_small_cases,
     agreement_random_convex,
     agreement_random_simple,

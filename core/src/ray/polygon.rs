@@ -74,6 +74,9 @@ pub enum PolygonError {
     },
     /// A fixed-point edge vector overflows.
     Overflow,
+    /// A vertex is farther from the best-fit plane than 64·ε·(1 + the
+    /// largest coordinate magnitude).
+    NotPlanar,
 }
 
 impl fmt::Display for PolygonError {
@@ -85,6 +88,7 @@ impl fmt::Display for PolygonError {
                 write!(f, "polygon has more than {capacity} vertices")
             }
             Self::Overflow => f.write_str("polygon edge vector overflows the scalar type"),
+            Self::NotPlanar => f.write_str("polygon vertices are not coplanar"),
         }
     }
 }
@@ -160,9 +164,9 @@ pub enum InclusionTest {
 /// axis of its normal and its 2D edges precomputed.
 ///
 /// The polygon must be simple (edges meet only at shared vertices;
-/// this O(n²) property is not checked) and its vertices should be coplanar:
-/// the plane is the Newell best fit through vertex 0, and inclusion is
-/// decided in the projection. Consecutive duplicate vertices are dropped.
+/// this O(n²) property is not checked) and its vertices coplanar (checked
+/// to a tolerance, [`PolygonError::NotPlanar`]): the plane is the Newell
+/// normal through vertex 0, and inclusion is decided in the projection. Consecutive duplicate vertices are dropped.
 /// Convex and concave polygons are both accepted; for a polygon that is not
 /// convex ([`Self::is_convex`] is false), [`InclusionTest::HalfPlane`] and
 /// [`InclusionTest::Fan`] fall back to [`InclusionTest::Crossing`].
@@ -213,6 +217,19 @@ impl<S: Scalar, const N: usize> Polygon<S, N> {
         }
         if !(n[axis].is_finite() && n[axis] != 0.0) {
             return Err(PolygonError::Degenerate);
+        }
+        // Coplanarity, against the unit Newell normal through v0.
+        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        let mut biggest = 0.0f64;
+        let mut off = 0.0f64;
+        for &v in vertices {
+            let p = f(v);
+            biggest = biggest.max(p[0].abs()).max(p[1].abs()).max(p[2].abs());
+            let r = [p[0] - v0[0], p[1] - v0[1], p[2] - v0[2]];
+            off = off.max(((r[0] * n[0] + r[1] * n[1] + r[2] * n[2]) / len).abs());
+        }
+        if off > 64.0 * S::EPSILON.to_f64() * (1.0 + biggest) {
+            return Err(PolygonError::NotPlanar);
         }
         let m = n[axis].abs();
         let normal = Vec3::new(

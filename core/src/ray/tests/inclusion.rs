@@ -559,6 +559,11 @@ fn degenerate_polygons_are_errors<S: Scalar>() {
         Some(PolygonError::Degenerate)
     );
     let sq = [v(z, z), v(o, z), v(o, o), v(z, o)];
+    let bent = [v(z, z), v(o, z), Vec3::new(o, o, o), v(z, o)];
+    assert_eq!(
+        Polygon::<S, 8>::new(&bent).err(),
+        Some(PolygonError::NotPlanar)
+    );
     assert_eq!(
         Polygon::<S, 3>::new(&sq).err(),
         Some(PolygonError::TooManyVertices { capacity: 3 })
@@ -619,7 +624,73 @@ fn edge_equation_coefficients<S: Scalar>() {
     }
 }
 
+/// Posed (rotated, translated: inexact) planar polygons pass the
+/// coplanarity check, and a ray through an interior point hits with every
+/// test, at the right distance.
+fn posed_polygons_hit<S: Scalar>() {
+    use crate::ray::Ray;
+    use crate::transform::{Euler, Pose};
+    let mut rng = Rng::new(21);
+    let scale = if S::IS_FLOAT { 3.0 } else { 8.0 };
+    // An L-shaped (concave) hexagon and a convex pentagon, object space.
+    let shapes: [&[(f64, f64)]; 2] = [
+        &[
+            (0.0, 0.0),
+            (2.0, 0.0),
+            (2.0, 1.0),
+            (1.0, 1.0),
+            (1.0, 2.0),
+            (0.0, 2.0),
+        ],
+        &[(0.0, 0.0), (2.0, 0.0), (2.5, 1.0), (1.0, 2.0), (-0.5, 1.0)],
+    ];
+    for _ in 0..100 {
+        let pose = Pose::new(
+            super::v3::<S>(
+                rng.uniform(-4.0, 4.0),
+                rng.uniform(-4.0, 4.0),
+                rng.uniform(-4.0, 4.0),
+            ),
+            Euler::new(
+                S::from_f64(rng.uniform(-3.0, 3.0)),
+                S::from_f64(rng.uniform(-1.5, 1.5)),
+                S::from_f64(rng.uniform(-3.0, 3.0)),
+            ),
+        );
+        let m = pose.object_to_world();
+        for shape in shapes {
+            let verts: Vec<Vec3<S>> = shape
+                .iter()
+                .map(|&(x, y)| m.transform_point3(super::v3(x * scale, y * scale, 0.0)))
+                .collect();
+            let poly = Polygon::<S, 8>::new(&verts).expect("planar within tolerance");
+            let inside = m.transform_point3(super::v3(0.5 * scale, 0.5 * scale, 0.0));
+            let eye = m.transform_point3(super::v3(0.3 * scale, 0.7 * scale, 5.0));
+            let ray = Ray::through(eye, inside).unwrap();
+            for test in [
+                InclusionTest::Crossing,
+                InclusionTest::HalfPlane,
+                InclusionTest::Fan,
+            ] {
+                let t = poly.clone().with_test(test).intersect(&ray, S::ZERO);
+                let t = t.expect("hit").to_f64();
+                assert!(
+                    (t - 1.0).abs() < 1e3 * S::EPSILON.to_f64(),
+                    "{} t = {t}",
+                    S::NAME
+                );
+            }
+            let outside = m.transform_point3(super::v3(1.5 * scale, 1.5 * scale, 0.0));
+            let miss = Ray::through(eye, outside).unwrap();
+            if shape.len() == 6 {
+                assert!(poly.intersect(&miss, S::ZERO).is_none());
+            }
+        }
+    }
+}
+
 per_scalar!(
+    posed_polygons_hit,
     edge_equation_coefficients,
     oracle_small_cases,
     agreement_random_convex,

@@ -25,6 +25,31 @@
 //! | `grid.rs` | [`Grid`]: uniform grid in caller storage, Amanatides–Woo 3D DDA, [`Mailbox`], early exit |
 //! | `wide.rs` (private) | overflow-checked dot products and the higher-precision fallbacks |
 //!
+//! # Examples
+//!
+//! One camera for both paths; cast the centre pixel at a posed sphere.
+//!
+//! ```
+//! use sightline::camera::{Camera, Projection};
+//! use sightline::math::{Affine3, Vec3};
+//! use sightline::ray::{nearest_hit, Object, RayCamera, Sphere};
+//!
+//! let camera = Camera::<f32>::look_at(Vec3::ZERO, Vec3::new(0.0, 0.0, -10.0), Vec3::Y)?;
+//! let projection = Projection::perspective(100.0, 64, 48);
+//! let caster = RayCamera::from_camera(&camera, &projection, 64, 48)?;
+//!
+//! let ball = Object::new(
+//!     Sphere::new(Vec3::ZERO, 1.0)?,
+//!     Affine3::from_translation(Vec3::new(0.0, 0.0, -10.0)),
+//! )?;
+//! let ray = caster.pixel_ray(32, 24).expect("finite camera");
+//! let hit = nearest_hit(&ray, &[ball], 0.0).expect("the ball is straight ahead");
+//! assert_eq!(hit.id, 0);
+//! assert!((hit.point.z + 9.0).abs() < 1e-2); // front of the ball
+//! assert!(hit.object_point.z > 0.99); // object space, for texturing
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
 //! # Distances
 //!
 //! `t` is measured in units of `|d|`; it is a distance when `d` is a unit

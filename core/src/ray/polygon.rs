@@ -18,9 +18,12 @@
 //! `C = d.y·a.x − d.x·a.y`, evaluated as `d.x·(p.y − a.y) − d.y·(p.x − a.x)`
 //! (relative to `a`, which keeps the terms small near the polygon). E is
 //! twice the signed area of (a, a + d, p): positive when p is left of the
-//! edge. Fixed point evaluates each product exactly with one rounding
-//! ([`Scalar::sub_mul_flag`]) and reports overflow; an overflowing point
-//! is treated as outside.
+//! edge. The inclusion tests need only its sign ([`Edge2::sign`]): fixed
+//! point computes it exactly in `i128` on the raw bits, so it never
+//! overflows; floats evaluate E in `S`, and a non-finite value (overflow)
+//! makes the point outside. [`Edge2::value`] returns the number itself
+//! (fixed point: each product exact with one rounding,
+//! [`Scalar::sub_mul_flag`]; `None` on overflow).
 //!
 //! # Boundary policy
 //!
@@ -43,10 +46,11 @@
 //!   point on it, and for a point inside the shared edge exactly one does.
 //! - A tiling of a region claims every point of its interior exactly once.
 //! - All four tests compute the same predicate, so they agree on *every*
-//!   point, on the boundary too, whenever the edge functions are exact
-//!   (e.g. integer coordinates with |x|, |y| < 2²⁵ in `f64`, 2¹⁰ in
-//!   `f32`, 90 in [`I16F16`](crate::scalar::I16F16)); with rounding they can
-//!   only differ within rounding distance of the boundary.
+//!   point, on the boundary too, whenever the signs are exact: always for
+//!   fixed point, and for floats when the edge functions are computed
+//!   exactly (e.g. integer coordinates with |x|, |y| < 2²⁵ in `f64`, 2¹⁰
+//!   in `f32`); otherwise they can differ only within rounding distance of
+//!   the boundary.
 //!
 //! The crossing test (1) in this form counts an edge when exactly one end
 //! has `y ≤ p.y` (the half-open rule: a vertex at the ray's height counts
@@ -54,9 +58,10 @@
 
 use super::Ray;
 use super::plane::Plane;
-use super::wide::{point_at, sub2};
+use super::wide::{point_at, raw, sub2};
 use crate::math::{Vec2, Vec3};
 use crate::scalar::Scalar;
+use core::cmp::Ordering;
 use core::fmt;
 
 /// Why a [`Polygon`] could not be built.
@@ -130,17 +135,46 @@ impl<S: Scalar> Edge2<S> {
         (!of && e.is_finite()).then_some(e)
     }
 
+    /// The sign of `E(p)`: exact for fixed point (integer arithmetic on the
+    /// raw bits, which cannot overflow); from [`Self::value`] for floats
+    /// (`None` when that overflows or is NaN).
+    #[must_use]
+    pub fn sign(&self, p: Vec2<S>) -> Option<Ordering> {
+        if S::IS_FLOAT {
+            self.value(p)?.partial_cmp(&S::ZERO)
+        } else {
+            Some(sign_raw(raw2(self.a), raw2(self.d), raw2(p)))
+        }
+    }
+
     /// Whether the nudged point `p'` is left of the edge (the boundary
-    /// policy in the [module docs](self)). `None` on overflow.
+    /// policy in the [module docs](self)). `None` when [`Self::sign`] is.
     #[must_use]
     pub fn owns(&self, p: Vec2<S>) -> Option<bool> {
-        let e = self.value(p)?;
-        Some(
-            e > S::ZERO
-                || (e == S::ZERO
-                    && (self.d.y < S::ZERO || (self.d.y == S::ZERO && self.d.x > S::ZERO))),
-        )
+        Some(owns_from(
+            self.sign(p)?,
+            self.d.y.partial_cmp(&S::ZERO)?,
+            self.d.x.partial_cmp(&S::ZERO)?,
+        ))
     }
+}
+
+/// The boundary policy from the signs of `E(p)`, `d.y` and `d.x`.
+fn owns_from(e: Ordering, dy: Ordering, dx: Ordering) -> bool {
+    e == Ordering::Greater
+        || (e == Ordering::Equal
+            && (dy == Ordering::Less || (dy == Ordering::Equal && dx == Ordering::Greater)))
+}
+
+/// Raw fixed-point integers of a 2D point (see [`raw`]).
+fn raw2<S: Scalar>(v: Vec2<S>) -> (i128, i128) {
+    (raw(v.x) as i128, raw(v.y) as i128)
+}
+
+/// Exact sign of `d.x·(p.y − a.y) − d.y·(p.x − a.x)` on raw integers
+/// (|raw| < 2³², so every product is below 2⁶⁵).
+fn sign_raw(a: (i128, i128), d: (i128, i128), p: (i128, i128)) -> Ordering {
+    (d.0 * (p.1 - a.1) - d.1 * (p.0 - a.0)).cmp(&0)
 }
 
 /// Which inclusion test [`Polygon::contains`] runs.
@@ -347,14 +381,14 @@ impl<S: Scalar, const N: usize> Polygon<S, N> {
             if (e.a.y <= p.y) == (b.y <= p.y) {
                 continue;
             }
-            let Some(v) = e.value(p) else {
+            let Some(v) = e.sign(p) else {
                 return false;
             };
             // Strictly left of the edge directed upward.
             let left_of_upward = if e.d.y > S::ZERO {
-                v > S::ZERO
+                v == Ordering::Greater
             } else {
-                v < S::ZERO
+                v == Ordering::Less
             };
             inside ^= left_of_upward;
         }
@@ -398,11 +432,19 @@ impl<S: Scalar, const N: usize> Polygon<S, N> {
         let (mut lo, mut hi) = (1, n - 1);
         while hi - lo > 1 {
             let mid = lo + (hi - lo) / 2;
-            let diag = Edge2 {
-                a: v0,
-                d: sub2(e[mid].a, v0)?,
+            let diag_inward = if S::IS_FLOAT {
+                inward(&Edge2 {
+                    a: v0,
+                    d: sub2(e[mid].a, v0)?,
+                })?
+            } else {
+                // Exact, and no overflow even where v_mid − v0 would.
+                let (a, b) = (raw2(v0), raw2(e[mid].a));
+                let d = (b.0 - a.0, b.1 - a.1);
+                let s = sign_raw(a, d, raw2(p));
+                owns_from(s, d.1.cmp(&0), d.0.cmp(&0)) == self.ccw
             };
-            if inward(&diag)? {
+            if diag_inward {
                 lo = mid;
             } else {
                 hi = mid;

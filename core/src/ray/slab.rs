@@ -195,12 +195,12 @@ impl<'a, S: Scalar, const N: usize> SlabIndex<'a, S, N> {
         // the crossing test).
         let left_count = list.partition_point(|&i| {
             let edge = &pe[i as usize];
-            match edge.value(p) {
+            match edge.sign(p) {
                 Some(v) => {
                     !(if edge.d.y > S::ZERO {
-                        v > S::ZERO
+                        v == core::cmp::Ordering::Greater
                     } else {
-                        v < S::ZERO
+                        v == core::cmp::Ordering::Less
                     })
                 }
                 None => {

@@ -18,6 +18,7 @@
 //! | [`pipeline`] | vertex formats chosen at compile time (xyz, +intensity, +uv, +both, perspective uv); Sutherland–Hodgman clipping in view space (near, far, four side planes with a guard band); projection to 28.4 sub-pixel coordinates and depth keys |
 //! | [`raster`] | integer scan conversion of convex polygons (28.4 sub-pixel, top-left rule) into spans; span shaders (flat, Gouraud, affine and perspective-correct textures, exact or subdivided); optional depth buffer |
 //! | [`target`] | span sinks: slice framebuffer with stride, bands for strip rendering, embedded-graphics `DrawTarget` adapter |
+//! | [`ray`] | screen→world: rays from a ray-casting camera, planes, polygons with four inclusion tests, spheres, watertight triangles, nearest hit |
 //!
 //! ## Coordinate conventions
 //!
@@ -61,6 +62,7 @@ pub mod camera;
 pub mod math;
 pub mod pipeline;
 pub mod raster;
+pub mod ray;
 pub mod scalar;
 pub mod solve;
 pub mod target;

@@ -1,1 +1,4 @@
-//! Shared helpers for sightline's cross-crate tests and benchmarks.
+//! Shared helpers for sightline's cross-crate tests, benchmarks and
+//! workloads.
+
+pub mod obj;

@@ -3,7 +3,9 @@
 use super::{Rng, per_scalar, v3};
 use crate::camera::{Camera, Projection};
 use crate::math::Vec3;
-use crate::ray::{Plane, PlaneError, Ray, RayCamera, RayCameraError, RayError};
+use crate::ray::{InclusionTest, Plane, PlaneError, Ray, RayCamera, RayCameraError, RayError};
+
+extern crate std;
 use crate::scalar::Scalar;
 use crate::transform::Euler;
 
@@ -164,4 +166,75 @@ per_scalar!(
     plane_from_points,
     camera_rays_match_projection,
     chapter_camera_pixel_centres,
+    extreme_inputs_never_panic_or_nan,
 );
+
+/// Every constructor and intersection on extreme and non-finite inputs:
+/// no panic, and any reported `t` is finite and above `t_min`.
+fn extreme_inputs_never_panic_or_nan<S: Scalar>() {
+    use crate::ray::{Aabb, Mesh, Polygon, Sphere, Triangle};
+    let mut vals = std::vec![
+        S::ZERO,
+        S::EPSILON,
+        -S::EPSILON,
+        S::ONE,
+        -S::ONE,
+        S::MAX,
+        S::MIN,
+        S::from_f64(1e3),
+        S::from_f64(-7.25),
+    ];
+    if S::IS_FLOAT {
+        vals.push(S::from_f64(0.0) / S::from_f64(0.0));
+        vals.push(S::ONE / S::from_f64(0.0));
+        vals.push(S::from_f64(1e-40));
+    }
+    let mut rng = Rng::new(404);
+    let pick = |rng: &mut Rng| vals[rng.range(0, vals.len() as i64 - 1) as usize];
+    let ok = |t: Option<S>| {
+        if let Some(t) = t {
+            assert!(t.is_finite() && t > S::ZERO, "{} bad t {t:?}", S::NAME);
+        }
+    };
+    for _ in 0..20000 {
+        let mut v = || Vec3::new(pick(&mut rng), pick(&mut rng), pick(&mut rng));
+        let (q, d, a, b, c) = (v(), v(), v(), v(), v());
+        let r = pick(&mut rng);
+        let Ok(ray) = Ray::new(q, d) else {
+            continue;
+        };
+        if let Ok(p) = Plane::new(a, b) {
+            ok(p.intersect(&ray, S::ZERO));
+        }
+        if let Ok(p) = Plane::from_points(a, b, c) {
+            ok(p.intersect(&ray, S::ZERO));
+        }
+        if let Ok(s) = Sphere::new(a, r) {
+            ok(s.intersect(&ray, S::ZERO));
+            let _ = s.roots(&ray);
+        }
+        ok(Triangle::new(a, b, c).intersect(&ray, S::ZERO).map(|h| h.t));
+        let verts = [a, b, c];
+        if let Ok(m) = Mesh::new(&verts, &[[0, 1, 2]]) {
+            ok(m.intersect(&ray, S::ZERO).map(|h| h.1.t));
+        }
+        if let Ok(p) = Polygon::<S, 4>::new(&[a, b, c, q]) {
+            for t in [
+                InclusionTest::Crossing,
+                InclusionTest::HalfPlane,
+                InclusionTest::Fan,
+            ] {
+                ok(p.clone().with_test(t).intersect(&ray, S::ZERO));
+            }
+        }
+        if let Ok(bx) = Aabb::new(a, b) {
+            if let Some((t0, t1)) = bx.intersect_range(&ray, S::ZERO, S::MAX) {
+                assert!(t0 <= t1);
+            }
+        }
+        if let Ok(cam) = RayCamera::new(a, b, c, q, 8, 8) {
+            let _ = cam.pixel_ray(3, 5);
+            let _ = cam.column_ray(7);
+        }
+    }
+}

@@ -15,7 +15,7 @@
 //! | [`solve`] | Gaussian elimination with partial pivoting, N×N with M right-hand sides, with pivot growth and a condition estimate |
 //! | [`transform`] | object→world from roll, pitch, yaw and an origin |
 //! | [`camera`] | cameras from angles, orthonormal vectors or general vectors (via [`solve`]); projections |
-//! | [`ray`] | screen→world: rays from a ray-casting camera, planes, polygons with four inclusion tests, spheres, watertight triangles, nearest hit |
+//! | [`ray`] | screen→world: rays from a ray-casting camera, planes, polygons with four inclusion tests, spheres, watertight triangles, nearest hit, bounding boxes and a uniform grid |
 //!
 //! ## Coordinate conventions
 //!

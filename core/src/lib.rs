@@ -12,13 +12,13 @@
 //! |---|---|
 //! | [`scalar`] | the [`Scalar`](scalar::Scalar) trait for `f32`, `f64` and [`Fx`](scalar::Fx) fixed point; overflow policy |
 //! | [`math`] | `Vec2/3/4`, `Mat3`, `Affine3` (3×4), `Mat4` |
-//! | [`solve`] | Gaussian elimination with partial pivoting, N×N with M right-hand sides, with pivot growth and a condition estimate |
+//! | [`solve`] | Gaussian elimination with partial pivoting, N×N with M right-hand sides, with pivot growth and the reciprocal condition number |
 //! | [`transform`] | object→world from roll, pitch, yaw and an origin |
 //! | [`camera`] | cameras from angles, orthonormal vectors or general vectors (via [`solve`]); projections |
 //! | [`pipeline`] | vertex formats chosen at compile time (xyz, +intensity, +uv, +both, perspective uv); Sutherland–Hodgman clipping in view space (near, far, four side planes with a guard band); projection to 28.4 sub-pixel coordinates and depth keys |
 //! | [`raster`] | integer scan conversion of convex polygons (28.4 sub-pixel, top-left rule) into spans; span shaders (flat, Gouraud, affine and perspective-correct textures, exact or subdivided); optional depth buffer |
 //! | [`target`] | span sinks: slice framebuffer with stride, bands for strip rendering, embedded-graphics `DrawTarget` adapter |
-//! | [`ray`] | screen→world: rays from a ray-casting camera, planes, polygons with four inclusion tests, spheres, watertight triangles, nearest hit |
+//! | [`ray`] | screen→world: rays from a ray-casting camera, planes, polygons with four inclusion tests, spheres, watertight triangles, nearest hit, bounding boxes and a uniform grid |
 //!
 //! ## Coordinate conventions
 //!

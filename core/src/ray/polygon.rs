@@ -36,11 +36,13 @@
 //! owns(edge, p) = E(p) > 0  or  (E(p) = 0 and (d.y < 0 or (d.y = 0 and d.x > 0)))
 //! ```
 //!
-//! that is, for a counter-clockwise polygon, a point on an edge belongs to
-//! it when the polygon lies to its right (a left edge, d.y < 0) or above
-//! it (a bottom edge, d.x > 0): the left and bottom edges are closed, the
-//! right and top edges open, like the top-left fill rule mirrored for y-up.
-//! For a vertex the neighbourhood just right of it decides. Consequences:
+//! (for a counter-clockwise polygon; a clockwise one uses its negation).
+//! Geometrically, in either orientation: a point on an edge belongs to the
+//! polygon when the polygon lies on the edge's +x side, or, for a
+//! horizontal edge, on its +y side. Left and bottom edges are closed,
+//! right and top edges open, like the top-left fill rule mirrored for
+//! y-up. For a vertex, the neighbourhood just to its right (and then just
+//! above) decides. Consequences:
 //! - Two polygons that share an edge with opposite directions (as in any
 //!   consistently oriented partition of the plane) never both claim a
 //!   point on it, and for a point inside the shared edge exactly one does.

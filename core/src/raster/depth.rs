@@ -31,6 +31,31 @@ pub trait DepthTest {
     /// maximal run of passing pixels, left to right. Pixels outside the
     /// buffer fail.
     fn test_span<F: FnMut(u32, u32)>(&mut self, y: i32, x: i32, len: u32, z: i32, dz: i32, pass: F);
+
+    /// As [`Self::test_span`] for a span whose pixels the caller holds in
+    /// `pixels` (pixel `x+i` is `pixels[i]`, `len = pixels.len()`): writes
+    /// `color(i)` into each pixel `i` that passes, in one loop. `color` is
+    /// called once per passing pixel, left to right.
+    #[inline]
+    fn test_write<C, F: FnMut(u32) -> C>(
+        &mut self,
+        y: i32,
+        x: i32,
+        z: i32,
+        dz: i32,
+        pixels: &mut [C],
+        mut color: F,
+    ) {
+        let len = u32::try_from(pixels.len()).unwrap_or(u32::MAX);
+        self.test_span(y, x, len, z, dz, |off, run| {
+            let (a, b) = (off as usize, off as usize + run as usize);
+            if let Some(px) = pixels.get_mut(a..b) {
+                for (i, p) in (off..).zip(px) {
+                    *p = color(i);
+                }
+            }
+        });
+    }
 }
 
 /// No depth buffer: every pixel passes.
@@ -163,6 +188,54 @@ impl DepthTest for DepthBuffer<'_> {
                 pass(skip + i as u32, passed as u32);
             }
             i += passed;
+        }
+    }
+
+    #[inline]
+    fn test_write<C, F: FnMut(u32) -> C>(
+        &mut self,
+        y: i32,
+        x: i32,
+        z: i32,
+        dz: i32,
+        pixels: &mut [C],
+        color: F,
+    ) {
+        self.write_passing(y, x, z, dz, pixels, color);
+    }
+}
+
+impl DepthBuffer<'_> {
+    /// The fused loop of [`DepthTest::test_write`]: one pass over the
+    /// keys and the pixels together.
+    #[inline]
+    fn write_passing<C, F: FnMut(u32) -> C>(
+        &mut self,
+        y: i32,
+        x: i32,
+        z: i32,
+        dz: i32,
+        pixels: &mut [C],
+        mut color: F,
+    ) {
+        let len = u32::try_from(pixels.len()).unwrap_or(u32::MAX);
+        let Some((skip, r)) = self.layout.span(y, x, len) else {
+            return;
+        };
+        let (Some(keys), Some(pixels)) = (self.buf.get_mut(r), pixels.get_mut(skip as usize..))
+        else {
+            return;
+        };
+        let mut z = z.wrapping_add(dz.wrapping_mul(skip as i32));
+        for ((d, p), i) in keys.iter_mut().zip(pixels).zip(skip..) {
+            // The span set-up keeps z within 0..=65535·256+255, so the
+            // shift gives the key exactly.
+            let key = (z >> DEPTH_FRAC_BITS) as DepthKey;
+            if key < *d {
+                *d = key;
+                *p = color(i);
+            }
+            z = z.wrapping_add(dz);
         }
     }
 }

@@ -122,7 +122,7 @@ impl<'v, const K: usize> Chain<'v, K> {
             bottom,
             forward,
             end_row: i32::MIN,
-            edge: EdgeStepper::new(0, 0, 0, 0, 0),
+            edge: EdgeStepper::NONE,
         }
     }
 
@@ -298,6 +298,28 @@ where
         } else {
             (0, 0)
         };
+        if Z::ENABLED && Sh::PER_PIXEL {
+            if let Some(pixels) = target.span_mut(y, x, len) {
+                // Depth test and write fused in one loop.
+                if let Some(c) = solid {
+                    depth.test_write(y, x, z, dz, pixels, |_| c);
+                } else {
+                    let mut start = [0i32; K];
+                    let mut step = [0i32; K];
+                    for k in 0..K {
+                        (start[k], step[k]) = vgrad[k].span(x, y, len, lo, hi);
+                    }
+                    depth.test_write(y, x, z, dz, pixels, |i| {
+                        let mut v = start;
+                        for k in 0..K {
+                            v[k] = v[k].wrapping_add(step[k].wrapping_mul(i as i32));
+                        }
+                        shader.color(&v)
+                    });
+                }
+                continue;
+            }
+        }
         if let Some(c) = solid {
             depth.test_span(y, x, len, z, dz, |off, run| {
                 target.fill_solid(y, x + off as i32, run, c);

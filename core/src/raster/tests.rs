@@ -739,3 +739,61 @@ proptest! {
         }
     }
 }
+
+/// A framebuffer that hides [`Target::span_mut`], forcing the run-splitting
+/// path of the depth test.
+struct Unfused<'a>(Framebuffer<'a, u8>);
+
+impl Target for Unfused<'_> {
+    type Color = u8;
+    fn clip_rect(&self) -> crate::target::Rect {
+        self.0.clip_rect()
+    }
+    fn fill_solid(&mut self, y: i32, x: i32, len: u32, color: u8) {
+        self.0.fill_solid(y, x, len, color);
+    }
+    fn fill_with<F: FnMut() -> u8>(&mut self, y: i32, x: i32, len: u32, colors: F) {
+        self.0.fill_with(y, x, len, colors);
+    }
+}
+
+proptest! {
+    /// The fused depth-test-and-write loop (slice targets) gives exactly
+    /// the pixels and keys of the run-splitting path, flat and Gouraud.
+    #[test]
+    fn fused_depth_write_matches_runs(
+        tris in proptest::collection::vec(
+            ((-40i32..360, -40i32..300, 0u16..=u16::MAX, 0i32..256),
+             (-40i32..360, -40i32..300, 0u16..=u16::MAX, 0i32..256),
+             (-40i32..360, -40i32..300, 0u16..=u16::MAX, 0i32..256)), 1..12),
+        gouraud in any::<bool>(),
+    ) {
+        let (w, h) = (40u16, 30u16);
+        let n = w as usize * h as usize;
+        let ramp = ramp_u8();
+        let (mut ca, mut za) = (vec![0u8; n], vec![u16::MAX; n]);
+        let (mut cb, mut zb) = (vec![0u8; n], vec![u16::MAX; n]);
+        {
+            let mut fa = Framebuffer::new(&mut ca, w, h, w as usize).unwrap();
+            let mut da = DepthBuffer::new(&mut za, w, h, w as usize, 0).unwrap();
+            let mut fb = Unfused(Framebuffer::new(&mut cb, w, h, w as usize).unwrap());
+            let mut db = DepthBuffer::new(&mut zb, w, h, w as usize, 0).unwrap();
+            for (k, &(a, b, c)) in tris.iter().enumerate() {
+                let v = |p: (i32, i32, u16, i32)| {
+                    ScreenVertex::new(p.0 * 2, p.1 * 2, p.2, [p.3 << 16])
+                };
+                let poly = [v(a), v(b), v(c)];
+                if gouraud {
+                    let g = Gouraud::new(&ramp);
+                    fill_polygon(&mut fa, &mut da, &g, &poly);
+                    fill_polygon(&mut fb, &mut db, &g, &poly);
+                } else {
+                    fill_polygon(&mut fa, &mut da, &Flat(k as u8 + 1), &poly);
+                    fill_polygon(&mut fb, &mut db, &Flat(k as u8 + 1), &poly);
+                }
+            }
+        }
+        prop_assert_eq!(ca, cb);
+        prop_assert_eq!(za, zb);
+    }
+}

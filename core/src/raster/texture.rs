@@ -224,6 +224,9 @@ fn texel_coord(u: i64) -> i32 {
 
 impl<C: Copy, W: Wrap, const N: u32> SpanShader<3> for PerspectiveTexture<'_, C, W, N> {
     type Color = C;
+    // Runs of N > 1 step between exact divisions, which `color` alone
+    // cannot reproduce.
+    const PER_PIXEL: bool = N <= 1;
 
     #[inline]
     fn color(&self, v: &[i32; 3]) -> C {

@@ -73,3 +73,16 @@ fn fixed_point_pipeline_renders_nearly_the_same_bunny() {
         );
     }
 }
+
+#[test]
+fn fill_modes_cover_the_whole_viewport() {
+    use sightline_tests::fill::{FillBench, FillMode};
+    for mode in FillMode::ALL {
+        let mut b = FillBench::new(mode);
+        for _ in 0..3 {
+            assert_eq!(b.frame(), 320 * 240);
+            // Every pixel is written every frame (depth modes move nearer).
+            assert_eq!(b.covered(), 320 * 240, "{mode:?}");
+        }
+    }
+}

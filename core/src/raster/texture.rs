@@ -205,6 +205,38 @@ impl<'a, C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'a, C, W, N> {
     }
 }
 
+impl<C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'_, C, W, N> {
+    /// Pixels of one run from (u, v) = `a` stepping by `d` (16.16).
+    #[inline]
+    fn fill_run(&self, run: &mut [C], a: (i64, i64), d: (i64, i64)) {
+        let last = run.len().saturating_sub(1) as i64;
+        let fits = |v: i64, dv: i64| {
+            let end = dv.saturating_mul(last).saturating_add(v);
+            i32::try_from(v).is_ok() && i32::try_from(end).is_ok()
+        };
+        if fits(a.0, d.0) && fits(a.1, d.1) {
+            // Every value lies between the two ends, so i32 holds them all
+            // and `>> 16` equals `texel_coord`.
+            let (mut u, mut v) = (a.0 as i32, a.1 as i32);
+            let (du, dv) = (d.0 as i32, d.1 as i32);
+            for p in run {
+                *p = self
+                    .tex
+                    .sample::<W>(u >> VARYING_FRAC_BITS, v >> VARYING_FRAC_BITS);
+                u = u.wrapping_add(du);
+                v = v.wrapping_add(dv);
+            }
+        } else {
+            let mut cur = a;
+            for p in run {
+                *p = self.tex.sample::<W>(texel_coord(cur.0), texel_coord(cur.1));
+                cur.0 += d.0;
+                cur.1 += d.1;
+            }
+        }
+    }
+}
+
 /// (u, v) in 16.16 from (u·q, v·q) in 16.16 and q in 8.24.
 #[inline]
 fn divide(v: &[i32; 3]) -> (i64, i64) {
@@ -266,6 +298,25 @@ impl<C: Copy, W: Wrap, const N: u32> SpanShader<3> for PerspectiveTexture<'_, C,
                 start[2].wrapping_add(step[2].wrapping_mul(i)),
             ])
         };
+        if let Some(pixels) = target.span_mut(y, x, len) {
+            // Slice target: the same values as the general path below, one
+            // run of N at a time in a tight loop.
+            let mut i = 0u32;
+            for run in pixels.chunks_mut(N as usize) {
+                let seg = run.len() as u32;
+                let a = at(i);
+                let (du, dv) = if seg > 1 {
+                    let b = at(i + seg - 1);
+                    let n = seg as i64 - 1;
+                    ((b.0 - a.0) / n, (b.1 - a.1) / n)
+                } else {
+                    (0, 0)
+                };
+                self.fill_run(run, a, (du, dv));
+                i += seg;
+            }
+            return;
+        }
         let mut i = 0u32;
         let mut cur = at(0);
         let (mut du, mut dv) = (0i64, 0i64);

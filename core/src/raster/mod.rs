@@ -21,7 +21,7 @@
 //!
 //! | piece | choices (all compile-time) |
 //! |---|---|
-//! | shader ([`SpanShader`]) | [`Flat`], [`Gouraud`] (colour ramp), [`AffineTexture`], [`PerspectiveTexture`] (exact, or runs of N) |
+//! | shader ([`SpanShader`]) | [`Flat`], [`Gouraud`] (colour ramp), [`AffineTexture`], [`LitAffineTexture`] (texture × intensity), [`PerspectiveTexture`] (exact, or runs of N) |
 //! | wrap ([`Wrap`]) | [`Repeat`], [`RepeatPow2`], [`Clamp`] |
 //! | depth ([`DepthTest`]) | [`NoDepth`] (free), [`DepthBuffer`] (u16 keys, less-than) |
 //! | target | anything implementing [`Target`] |
@@ -52,7 +52,8 @@ mod texture;
 pub use depth::{DEPTH_FRAC_BITS, DepthBuffer, DepthKey, DepthTest, NoDepth};
 pub use shader::{Flat, Gouraud, Shade, SpanShader, VARYING_FRAC_BITS};
 pub use texture::{
-    AffineTexture, Clamp, PERSPECTIVE_Q_BITS, PerspectiveTexture, Repeat, RepeatPow2, Texture, Wrap,
+    AffineTexture, Clamp, LitAffineTexture, PERSPECTIVE_Q_BITS, PerspectiveTexture, Repeat,
+    RepeatPow2, Texture, Wrap,
 };
 
 use crate::target::Target;

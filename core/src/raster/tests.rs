@@ -833,3 +833,44 @@ proptest! {
         prop_assert_eq!(ca, cb);
     }
 }
+
+#[test]
+fn lit_affine_texture_scales_texels() {
+    use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+    let texels: Vec<Rgb565> = (0..16u8)
+        .map(|i| Rgb565::new(i * 2, 63 - i * 3, 31 - i))
+        .collect();
+    let tex = Texture::new(&texels, 4, 4, 4).unwrap();
+    let plain = AffineTexture::<_, RepeatPow2>::new(tex).unwrap();
+    let lit = LitAffineTexture::<_, RepeatPow2>::new(tex).unwrap();
+    let (w, h) = (12u16, 10u16);
+    let n = w as usize * h as usize;
+    for i in [0u8, 1, 77, 128, 254, 255] {
+        let (mut a, mut b) = (vec![Rgb565::BLACK; n], vec![Rgb565::BLACK; n]);
+        {
+            let mut fa = Framebuffer::new(&mut a, w, h, w as usize).unwrap();
+            let mut fb = Framebuffer::new(&mut b, w, h, w as usize).unwrap();
+            let iv = (i as i32) << 16;
+            let uv = |x: i32, y: i32, u: i32, v: i32| (x * 16, y * 16, u << 16, v << 16);
+            let quad = [
+                uv(0, 0, 0, 0),
+                uv(12, 1, 9, 0),
+                uv(11, 10, 9, 7),
+                uv(1, 9, 0, 7),
+            ];
+            let pa: Vec<ScreenVertex<2>> = quad
+                .iter()
+                .map(|&(x, y, u, v)| ScreenVertex::new(x, y, 0, [u, v]))
+                .collect();
+            let pb: Vec<ScreenVertex<3>> = quad
+                .iter()
+                .map(|&(x, y, u, v)| ScreenVertex::new(x, y, 0, [iv, u, v]))
+                .collect();
+            fill_polygon(&mut fa, &mut NoDepth, &plain, &pa);
+            fill_polygon(&mut fb, &mut NoDepth, &lit, &pb);
+        }
+        for (p, q) in a.iter().zip(&b) {
+            assert_eq!(p.scale(i), *q, "intensity {i}");
+        }
+    }
+}

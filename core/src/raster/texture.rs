@@ -15,7 +15,7 @@
 //!   runs of `N` pixels and steps linearly between them (the classic
 //!   subdivided affine compromise: two divisions per run).
 
-use super::shader::{SpanShader, VARYING_FRAC_BITS};
+use super::shader::{Shade, SpanShader, VARYING_FRAC_BITS};
 use crate::target::{BufferError, Target, layout::Layout};
 use core::fmt::Debug;
 
@@ -178,6 +178,47 @@ impl<C: Copy, W: Wrap> SpanShader<2> for AffineTexture<'_, C, W> {
         let _ = self.wrap;
         self.tex
             .sample::<W>(v[0] >> VARYING_FRAC_BITS, v[1] >> VARYING_FRAC_BITS)
+    }
+}
+
+/// Affine texture mapping modulated by Gouraud intensity: varyings
+/// (intensity 0..=255, u, v), all 16.16, as
+/// [`IntensityUv`](crate::pipeline::IntensityUv) vertices produce. Each
+/// pixel is its texel scaled by the interpolated intensity
+/// ([`Shade::scale`]), so full intensity (255) gives exactly
+/// [`AffineTexture`]'s colour.
+///
+/// Per pixel: the affine texture's work plus one scale per channel.
+#[derive(Clone, Copy, Debug)]
+pub struct LitAffineTexture<'a, C, W> {
+    tex: Texture<'a, C>,
+    wrap: W,
+}
+
+impl<'a, C: Shade, W: Wrap> LitAffineTexture<'a, C, W> {
+    /// A lit affine texture shader; `None` if `W` does not accept the
+    /// texture's size.
+    #[must_use]
+    pub fn new(tex: Texture<'a, C>) -> Option<Self> {
+        (W::accepts(tex.width) && W::accepts(tex.height)).then(|| Self {
+            tex,
+            wrap: W::default(),
+        })
+    }
+}
+
+impl<C: Shade, W: Wrap> SpanShader<3> for LitAffineTexture<'_, C, W> {
+    type Color = C;
+
+    #[inline]
+    fn color(&self, v: &[i32; 3]) -> C {
+        let _ = self.wrap;
+        // The intensity varying shares the default range with u and v, so
+        // clamp it into 0..=255 here.
+        let i = (v[0] >> VARYING_FRAC_BITS).clamp(0, 255) as u8;
+        self.tex
+            .sample::<W>(v[1] >> VARYING_FRAC_BITS, v[2] >> VARYING_FRAC_BITS)
+            .scale(i)
     }
 }
 

@@ -92,7 +92,7 @@ impl Gradient {
     /// sliver) the step is recomputed from the clamped ends, so the
     /// per-pixel loop never leaves the range and needs no clamp of its own.
     /// `hi − lo` must be below 2^31 so that the step fits in i32.
-    #[inline]
+    #[inline(always)]
     pub(super) fn span(&self, x: i32, y: i32, len: u32, lo: i32, hi: i32) -> (i32, i32) {
         let px = (x as i64) * 16 + 8 - self.x0 as i64;
         let py = (y as i64) * 16 + 8 - self.y0 as i64;

@@ -874,3 +874,32 @@ fn lit_affine_texture_scales_texels() {
         }
     }
 }
+
+proptest! {
+    /// The triangle walker gives exactly the chain walker's pixels and
+    /// keys: the same triangle with a repeated vertex goes through the
+    /// general path.
+    #[test]
+    fn triangle_path_matches_general_path(
+        tri in proptest::array::uniform3((-300i32..900, -300i32..700, 0u16..=u16::MAX, 0i32..256)),
+        clip_x in 0u16..30, clip_y in 0u16..20,
+    ) {
+        let (w, h) = (40u16, 30u16);
+        let n = w as usize * h as usize;
+        let ramp = ramp_u8();
+        let v = |p: (i32, i32, u16, i32)| ScreenVertex::new(p.0, p.1, p.2, [p.3 << 16]);
+        let t3 = [v(tri[0]), v(tri[1]), v(tri[2])];
+        let t4 = [t3[0], t3[1], t3[2], t3[2]];
+        let mut out = Vec::new();
+        for poly in [&t3[..], &t4[..]] {
+            let (mut c, mut z) = (vec![0u8; n], vec![u16::MAX; n]);
+            let o = {
+                let mut band = Band::new(&mut c, w, h - clip_y, w as usize, clip_y as i32).unwrap();
+                let mut d = DepthBuffer::new(&mut z, w - clip_x, h, w as usize, 0).unwrap();
+                fill_polygon(&mut band, &mut d, &Gouraud::new(&ramp), poly)
+            };
+            out.push((o, c, z));
+        }
+        prop_assert_eq!(&out[0], &out[1]);
+    }
+}

@@ -219,6 +219,23 @@ impl DepthBuffer<'_> {
         mut color: F,
     ) {
         let len = u32::try_from(pixels.len()).unwrap_or(u32::MAX);
+        if let Some(keys) = self
+            .layout
+            .span_exact(y, x, len)
+            .and_then(|r| self.buf.get_mut(r))
+        {
+            // The whole span is inside (the scan converter's case).
+            let mut z = z;
+            for ((d, p), i) in keys.iter_mut().zip(pixels).zip(0..) {
+                let key = (z >> DEPTH_FRAC_BITS) as DepthKey;
+                if key < *d {
+                    *d = key;
+                    *p = color(i);
+                }
+                z = z.wrapping_add(dz);
+            }
+            return;
+        }
         let Some((skip, r)) = self.layout.span(y, x, len) else {
             return;
         };

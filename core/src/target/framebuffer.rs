@@ -217,10 +217,7 @@ fn span_mut<'b, C>(
     x: i32,
     len: u32,
 ) -> Option<&'b mut [C]> {
-    match layout.span(y, x, len) {
-        Some((0, r)) if r.len() == len as usize => buf.get_mut(r),
-        _ => None,
-    }
+    buf.get_mut(layout.span_exact(y, x, len)?)
 }
 
 #[inline]

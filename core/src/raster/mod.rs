@@ -23,7 +23,7 @@
 //! |---|---|
 //! | shader ([`SpanShader`]) | [`Flat`], [`Gouraud`] (colour ramp), [`AffineTexture`], [`LitAffineTexture`] (texture × intensity), [`PerspectiveTexture`] (exact, or runs of N) |
 //! | wrap ([`Wrap`]) | [`Repeat`], [`RepeatPow2`], [`Clamp`] |
-//! | depth ([`DepthTest`]) | [`NoDepth`] (free), [`DepthBuffer`] (u16 keys, less-than) |
+//! | depth ([`DepthTest`]) | [`NoDepth`] (free), [`DepthBuffer`] (u16 keys, or u32 24.8 depths; less-than) |
 //! | target | anything implementing [`Target`] |
 //!
 //! # Limits
@@ -49,7 +49,7 @@ mod gradient;
 mod shader;
 mod texture;
 
-pub use depth::{DEPTH_FRAC_BITS, DepthBuffer, DepthKey, DepthTest, NoDepth};
+pub use depth::{DEPTH_FRAC_BITS, DepthBuffer, DepthKey, DepthTest, NoDepth, StoredDepth};
 pub use shader::{Flat, Gouraud, Shade, SpanShader, VARYING_FRAC_BITS};
 pub use texture::{
     AffineTexture, Clamp, LitAffineTexture, PERSPECTIVE_Q_BITS, PerspectiveTexture, Repeat,

@@ -903,3 +903,78 @@ proptest! {
         prop_assert_eq!(&out[0], &out[1]);
     }
 }
+
+/// Draws two triangles covering the same 32×32 square in both orders with
+/// a `K` depth buffer; returns how many pixels differ between the orders.
+fn crossing_planes_order_dependence<K: StoredDepth>(far: K) -> usize {
+    let (w, h) = (32u16, 32u16);
+    let n = w as usize * h as usize;
+    // Two planes that cross along the diagonal and differ by at most 1.5
+    // keys over the square: with 16-bit keys most pixels tie.
+    let a = |c| {
+        let v = |x: i32, y: i32, z: u16| ScreenVertex::new(x * 16, y * 16, z, [0; 0]);
+        (c, [v(-40, -40, 1000), v(80, -40, 1001), v(-40, 80, 1001)])
+    };
+    let b = |c| {
+        let v = |x: i32, y: i32, z: u16| ScreenVertex::new(x * 16, y * 16, z, [0; 0]);
+        (c, [v(-40, -40, 1001), v(80, -40, 1000), v(-40, 80, 1000)])
+    };
+    let mut out = Vec::new();
+    for order in [[a(1u8), b(2u8)], [b(2u8), a(1u8)]] {
+        let (mut c, mut z) = (vec![0u8; n], vec![far; n]);
+        {
+            let mut fb = Framebuffer::new(&mut c, w, h, w as usize).unwrap();
+            let mut d = DepthBuffer::new(&mut z, w, h, w as usize, 0).unwrap();
+            for (col, tri) in &order {
+                fill_polygon(&mut fb, &mut d, &Flat(*col), tri);
+            }
+        }
+        out.push(c);
+    }
+    out[0].iter().zip(&out[1]).filter(|(p, q)| p != q).count()
+}
+
+#[test]
+fn u32_depth_keeps_the_interpolated_fraction() {
+    // u16: pixels whose keys tie keep whichever triangle came first.
+    let d16 = crossing_planes_order_dependence::<u16>(u16::MAX);
+    // u32 (24.8): the planes decide everywhere but on the crossing line.
+    let d32 = crossing_planes_order_dependence::<u32>(u32::MAX);
+    std::println!("order-dependent pixels: u16 {d16}, u32 {d32}");
+    assert!(d16 > 300, "u16: {d16} pixels depend on the order");
+    assert!(d32 <= 32, "u32: {d32} pixels depend on the order");
+}
+
+proptest! {
+    /// With well separated depths (whole keys apart at every pixel) the
+    /// u32 buffer draws exactly what the u16 buffer draws.
+    #[test]
+    fn u32_depth_matches_u16_when_keys_differ(
+        zs in proptest::collection::vec(0u16..60, 2..6),
+    ) {
+        let (w, h) = (24u16, 20u16);
+        let n = w as usize * h as usize;
+        let tris: Vec<[ScreenVertex<0>; 3]> = zs.iter().enumerate().map(|(k, &z)| {
+            let z = z * 1000; // constant depth per triangle
+            let o = k as i32 * 32;
+            [ScreenVertex::new(o, 0, z, []), ScreenVertex::new(o + 300, 40, z, []),
+             ScreenVertex::new(o + 20, 320, z, [])]
+        }).collect();
+        let (mut c16, mut z16) = (vec![0u8; n], vec![u16::MAX; n]);
+        let (mut c32, mut z32) = (vec![0u8; n], vec![u32::MAX; n]);
+        {
+            let mut f16 = Framebuffer::new(&mut c16, w, h, w as usize).unwrap();
+            let mut d16 = DepthBuffer::new(&mut z16, w, h, w as usize, 0).unwrap();
+            let mut f32_ = Framebuffer::new(&mut c32, w, h, w as usize).unwrap();
+            let mut d32 = DepthBuffer::new(&mut z32, w, h, w as usize, 0).unwrap();
+            for (k, t) in tris.iter().enumerate() {
+                fill_polygon(&mut f16, &mut d16, &Flat(k as u8 + 1), t);
+                fill_polygon(&mut f32_, &mut d32, &Flat(k as u8 + 1), t);
+            }
+        }
+        prop_assert_eq!(c16, c32);
+        for (a, b) in z16.iter().zip(&z32) {
+            prop_assert_eq!(*a as u32, if *b == u32::MAX { u16::MAX as u32 } else { *b >> 8 });
+        }
+    }
+}

@@ -12,12 +12,16 @@
 //! edges down to the bottom vertex one scanline at a time with exact
 //! integer steppers (see the `edge` module), and emit `[left, right)` per
 //! row, scissored to the target's [`clip_rect`](crate::target::Target::clip_rect).
+//! A triangle (most of a mesh) walks its long edge against its two short
+//! edges instead, which gives the same spans without chain bookkeeping.
 //! Rows and columns are half-open at the same rule: row j is drawn when
 //! `y_top ≤ j + ½ < y_bottom`, pixel i when `x_left ≤ i + ½ < x_right`.
 //!
 //! Interpolated quantities (the depth key and the shader's varyings) are
 //! planes fitted once per polygon and evaluated once per span (see the
-//! `gradient` module); per pixel there is one add per quantity.
+//! `gradient` module); per pixel there is one add per quantity. On targets
+//! that expose their memory ([`Target::span_mut`]) the depth test and the
+//! write are fused into one loop per span.
 //!
 //! | piece | choices (all compile-time) |
 //! |---|---|

@@ -1,4 +1,7 @@
 //! Shared helpers for sightline's cross-crate tests, benchmarks and
-//! workloads.
+//! workloads: the OBJ reader, the W1/W2 raster workloads and the fill-rate
+//! modes (`src/bin/workload.rs`).
 
+pub mod fill;
 pub mod obj;
+pub mod workload;

@@ -29,11 +29,13 @@
 //! projection.
 
 mod clip;
+pub mod mesh;
 pub mod vertex;
 
 pub use clip::{
     ClipError, ClippedPolygon, Frustum, MAX_CLIPPED_VERTICES, MAX_INPUT_VERTICES, MAX_PLANES, Plane,
 };
+pub use mesh::{MeshTriangle, MeshVertex};
 pub use vertex::{
     Attributes, Intensity, IntensityUv, Uv, UvPerspective, Varyings, Vertex, VertexXyz, VertexXyzI,
     VertexXyzIUv, VertexXyzUv, VertexXyzUvP,
@@ -339,20 +341,8 @@ impl<S: Scalar> Pipeline<S> {
                 .push(sv)
                 .map_err(|_| DrawError::Clip(ClipError::TooManyVertices))?;
         }
-        if let (true, Some(&last)) = (self.cull != Cull::None, screen.last()) {
-            // Culling on the snapped screen polygon decides exactly what the
-            // scan converter would draw. i128: coordinates may reach 2^31
-            // here (the scan converter rejects beyond 2^28 later).
-            let mut area2: i128 = 0;
-            let mut prev = last;
-            for &v in &screen {
-                area2 += prev.x as i128 * v.y as i128 - prev.y as i128 * v.x as i128;
-                prev = v;
-            }
-            let front = area2 < 0;
-            if (self.cull == Cull::Back && !front) || (self.cull == Cull::Front && front) {
-                return Ok(None);
-            }
+        if !self.keep(&screen) {
+            return Ok(None);
         }
         Ok(Some(screen))
     }

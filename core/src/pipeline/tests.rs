@@ -673,6 +673,43 @@ fn culling<S: Scalar>() {
     }
 }
 
+/// The indexed-mesh path gives exactly `project_polygon`'s result for
+/// every triangle of a random point cloud: inside, clipped, outside,
+/// behind the eye and culled, for every cull mode.
+fn mesh_matches_project_polygon<S: Scalar>(
+    pts: &[(f64, f64, f64, f64)],
+    tris: &[(usize, usize, usize)],
+) {
+    let verts: Vec<VertexXyzI<S>> = pts.iter().map(|&(x, y, z, i)| vi(x, y, z, i)).collect();
+    for cull in [Cull::None, Cull::Back, Cull::Front] {
+        let p = pipe::<S>().with_cull(cull);
+        let mut proj = std::vec![MeshVertex::<1>::default(); verts.len()];
+        p.project_vertices(&verts, &mut proj);
+        for &(a, b, c) in tris {
+            let (a, b, c) = (a % verts.len(), b % verts.len(), c % verts.len());
+            let t = [a as u32, b as u32, c as u32];
+            let mesh = p.mesh_triangle(&verts, &proj, t);
+            let poly = p.project_polygon::<_, 1>(&[verts[a], verts[b], verts[c]]);
+            match (mesh, poly) {
+                (Ok(Some(m)), Ok(Some(q))) => assert_eq!(m.as_slice(), q.as_slice()),
+                // Entirely outside one plane: the clipper returns an empty
+                // polygon, the mesh path nothing at all.
+                (Ok(None), Ok(Some(q))) => assert!(q.len() < 3, "{cull:?} {t:?}"),
+                (Ok(None), Ok(None)) => {}
+                (m, q) => panic!("{cull:?} {t:?}: mesh {m:?} vs polygon {q:?}"),
+            }
+        }
+    }
+    // An index out of range is an error, not a panic.
+    let mut proj = std::vec![MeshVertex::<1>::default(); verts.len()];
+    pipe::<S>().project_vertices(&verts, &mut proj);
+    assert!(
+        pipe::<S>()
+            .mesh_triangle(&verts, &proj, [0, 0, u32::MAX])
+            .is_err()
+    );
+}
+
 macro_rules! pipeline_tests {
     ($m:ident, $S:ty) => {
         mod $m {
@@ -737,6 +774,15 @@ macro_rules! pipeline_tests {
                     jitter in proptest::collection::vec((-1.0f64..1.0, -1.0f64..1.0), 1..30),
                 ) {
                     prop_assume!(super::clipped_mesh_has_no_overdraw::<$S>(z0, ax, by, cell, &jitter));
+                }
+
+                #[test]
+                fn mesh_matches_project_polygon(
+                    pts in proptest::collection::vec(
+                        (-3.0f64..3.0, -3.0f64..3.0, -1.0f64..8.0, 0.0f64..1.0), 3..12),
+                    tris in proptest::collection::vec((0usize..12, 0usize..12, 0usize..12), 1..20),
+                ) {
+                    super::mesh_matches_project_polygon::<$S>(&pts, &tris);
                 }
 
                 #[test]

@@ -25,12 +25,38 @@ pub trait DepthTest {
     /// The pixels this buffer holds, or `None` when it imposes no limit.
     fn clip_rect(&self) -> Option<Rect>;
 
-    /// Tests the span `x..x+len` of row `y`, where pixel `x+i` has key
-    /// `(z + i·dz) >> DEPTH_FRAC_BITS`. Stores the keys that pass (strictly
+    /// Tests the span `x..x+len` of row `y`, where pixel `x+i` has depth
+    /// `z + i·dz` (24.8; the 16-bit key is `>> DEPTH_FRAC_BITS`). Stores
+    /// the keys that pass (strictly
     /// less than the stored key) and calls `pass(offset, run)` for each
     /// maximal run of passing pixels, left to right. Pixels outside the
     /// buffer fail.
     fn test_span<F: FnMut(u32, u32)>(&mut self, y: i32, x: i32, len: u32, z: i32, dz: i32, pass: F);
+
+    /// As [`Self::test_span`] for a span whose pixels the caller holds in
+    /// `pixels` (pixel `x+i` is `pixels[i]`, `len = pixels.len()`): writes
+    /// `color(i)` into each pixel `i` that passes, in one loop. `color` is
+    /// called once per passing pixel, left to right.
+    #[inline]
+    fn test_write<C, F: FnMut(u32) -> C>(
+        &mut self,
+        y: i32,
+        x: i32,
+        z: i32,
+        dz: i32,
+        pixels: &mut [C],
+        mut color: F,
+    ) {
+        let len = u32::try_from(pixels.len()).unwrap_or(u32::MAX);
+        self.test_span(y, x, len, z, dz, |off, run| {
+            let (a, b) = (off as usize, off as usize + run as usize);
+            if let Some(px) = pixels.get_mut(a..b) {
+                for (i, p) in (off..).zip(px) {
+                    *p = color(i);
+                }
+            }
+        });
+    }
 }
 
 /// No depth buffer: every pixel passes.
@@ -58,7 +84,46 @@ impl DepthTest for NoDepth {
     }
 }
 
-/// A depth buffer of 16-bit keys over a caller-supplied slice, with the
+/// What a [`DepthBuffer`] stores per pixel: `u16` (the 16-bit key, half
+/// the memory) or `u32` (the interpolated key with its 8 fractional bits,
+/// 24.8).
+pub trait StoredDepth: Copy + Ord + core::fmt::Debug + private::Sealed {
+    /// The farthest value: what [`DepthBuffer::clear`] writes.
+    const FAR: Self;
+    /// The stored value for an interpolated depth `z` in 24.8 (within
+    /// `0..=65535·256+255`, as the span set-up guarantees).
+    fn from_z(z: i32) -> Self;
+}
+
+impl StoredDepth for u16 {
+    const FAR: Self = u16::MAX;
+    #[inline]
+    fn from_z(z: i32) -> Self {
+        (z >> DEPTH_FRAC_BITS) as u16
+    }
+}
+
+/// Keeps the 8 fractional bits the scan converter interpolates: pixels of
+/// two polygons whose 16-bit keys tie are still ordered by their exact
+/// planes (to 1/256 of a key). Vertex keys themselves stay 16-bit (see
+/// [`pipeline`](crate::pipeline)), so this refines the ordering between
+/// vertices, not the precision of the projection.
+impl StoredDepth for u32 {
+    const FAR: Self = u32::MAX;
+    #[inline]
+    fn from_z(z: i32) -> Self {
+        z as u32
+    }
+}
+
+mod private {
+    pub trait Sealed {}
+    impl Sealed for u16 {}
+    impl Sealed for u32 {}
+}
+
+/// A depth buffer over a caller-supplied slice of 16-bit keys (`K = u16`,
+/// the default) or 24.8 depths (`K = u32`, see [`StoredDepth`]), with the
 /// same shape rules as [`Framebuffer`](crate::target::Framebuffer) and an
 /// optional first row, so a band-sized depth buffer can follow a
 /// [`Band`](crate::target::Band).
@@ -68,19 +133,19 @@ impl DepthTest for NoDepth {
 /// Validated once by [`DepthBuffer::new`]; afterwards no method panics or
 /// writes outside the slice.
 #[derive(Debug)]
-pub struct DepthBuffer<'a> {
-    buf: &'a mut [DepthKey],
+pub struct DepthBuffer<'a, K: StoredDepth = DepthKey> {
+    buf: &'a mut [K],
     layout: Layout,
 }
 
-impl<'a> DepthBuffer<'a> {
+impl<'a, K: StoredDepth> DepthBuffer<'a, K> {
     /// Wraps `buf` as `rows` rows of `width` keys, `stride` apart, for
     /// frame rows `y0..y0+rows`.
     ///
     /// # Errors
     /// As [`Band::new`](crate::target::Band::new).
     pub fn new(
-        buf: &'a mut [DepthKey],
+        buf: &'a mut [K],
         width: u16,
         rows: u16,
         stride: usize,
@@ -90,7 +155,8 @@ impl<'a> DepthBuffer<'a> {
         Ok(Self { buf, layout })
     }
 
-    /// Sets every key to the farthest value, 65535.
+    /// Sets every key to the farthest value ([`StoredDepth::FAR`]: 65535
+    /// for `u16`).
     pub fn clear(&mut self) {
         for row in 0..self.layout.height as i32 {
             if let Some((_, r)) =
@@ -98,7 +164,7 @@ impl<'a> DepthBuffer<'a> {
                     .span(self.layout.y0 + row, 0, self.layout.width as u32)
             {
                 if let Some(s) = self.buf.get_mut(r) {
-                    s.fill(DepthKey::MAX);
+                    s.fill(K::FAR);
                 }
             }
         }
@@ -116,14 +182,14 @@ impl<'a> DepthBuffer<'a> {
 
     /// The key at frame position (x, y), or `None` outside.
     #[must_use]
-    pub fn key(&self, x: i32, y: i32) -> Option<DepthKey> {
+    pub fn key(&self, x: i32, y: i32) -> Option<K> {
         self.layout
             .index(x, y)
             .and_then(|i| self.buf.get(i).copied())
     }
 }
 
-impl DepthTest for DepthBuffer<'_> {
+impl<K: StoredDepth> DepthTest for DepthBuffer<'_, K> {
     const ENABLED: bool = true;
 
     fn clip_rect(&self) -> Option<Rect> {
@@ -165,16 +231,81 @@ impl DepthTest for DepthBuffer<'_> {
             i += passed;
         }
     }
+
+    #[inline]
+    fn test_write<C, F: FnMut(u32) -> C>(
+        &mut self,
+        y: i32,
+        x: i32,
+        z: i32,
+        dz: i32,
+        pixels: &mut [C],
+        color: F,
+    ) {
+        self.write_passing(y, x, z, dz, pixels, color);
+    }
+}
+
+impl<K: StoredDepth> DepthBuffer<'_, K> {
+    /// The fused loop of [`DepthTest::test_write`]: one pass over the
+    /// keys and the pixels together.
+    #[inline]
+    fn write_passing<C, F: FnMut(u32) -> C>(
+        &mut self,
+        y: i32,
+        x: i32,
+        z: i32,
+        dz: i32,
+        pixels: &mut [C],
+        mut color: F,
+    ) {
+        let len = u32::try_from(pixels.len()).unwrap_or(u32::MAX);
+        if let Some(keys) = self
+            .layout
+            .span_exact(y, x, len)
+            .and_then(|r| self.buf.get_mut(r))
+        {
+            // The whole span is inside (the scan converter's case).
+            let mut z = z;
+            for ((d, p), i) in keys.iter_mut().zip(pixels).zip(0..) {
+                let key = K::from_z(z);
+                if key < *d {
+                    *d = key;
+                    *p = color(i);
+                }
+                z = z.wrapping_add(dz);
+            }
+            return;
+        }
+        let Some((skip, r)) = self.layout.span(y, x, len) else {
+            return;
+        };
+        let (Some(keys), Some(pixels)) = (self.buf.get_mut(r), pixels.get_mut(skip as usize..))
+        else {
+            return;
+        };
+        let mut z = z.wrapping_add(dz.wrapping_mul(skip as i32));
+        for ((d, p), i) in keys.iter_mut().zip(pixels).zip(skip..) {
+            // The span set-up keeps z within 0..=65535·256+255, so the
+            // conversion is exact.
+            let key = K::from_z(z);
+            if key < *d {
+                *d = key;
+                *p = color(i);
+            }
+            z = z.wrapping_add(dz);
+        }
+    }
 }
 
 /// Counts leading pixels that fail (key ≥ stored); returns the count and
 /// the z after them. The span set-up keeps z within
 /// 0..=65535·256+255, so the shift gives the key exactly.
 #[inline(never)]
-fn skip_failing(row: &[DepthKey], mut z: i32, dz: i32) -> (usize, i32) {
+fn skip_failing<K: StoredDepth>(row: &[K], mut z: i32, dz: i32) -> (usize, i32) {
     let mut n = 0;
     for &d in row {
-        if ((z >> DEPTH_FRAC_BITS) as DepthKey) < d {
+        if K::from_z(z) < d {
             break;
         }
         z = z.wrapping_add(dz);
@@ -186,10 +317,10 @@ fn skip_failing(row: &[DepthKey], mut z: i32, dz: i32) -> (usize, i32) {
 /// Stores leading keys that pass (key < stored); returns the count and
 /// the z after them.
 #[inline(never)]
-fn store_passing(row: &mut [DepthKey], mut z: i32, dz: i32) -> (usize, i32) {
+fn store_passing<K: StoredDepth>(row: &mut [K], mut z: i32, dz: i32) -> (usize, i32) {
     let mut n = 0;
     for d in row {
-        let key = (z >> DEPTH_FRAC_BITS) as DepthKey;
+        let key = K::from_z(z);
         if key >= *d {
             break;
         }

@@ -14,9 +14,11 @@
 /// `ceil(n / d)` and the remainder `r = q·d − n ∈ [0, d)`, for `d > 0`.
 #[inline]
 pub(super) fn ceil_div(n: i64, d: i64) -> (i64, i64) {
-    let f = n.div_euclid(d);
-    let m = n.rem_euclid(d);
-    if m == 0 { (f, 0) } else { (f + 1, d - m) }
+    // One truncating division: n = q·d + r with |r| < d and r of n's
+    // sign. r > 0: the ceiling is q + 1 with remainder d − r; r ≤ 0: it
+    // is q with remainder −r. (No overflow: d > 0 and |n| < 2^63.)
+    let (q, r) = (n / d, n % d);
+    if r > 0 { (q + 1, d - r) } else { (q, -r) }
 }
 
 /// The first pixel row (or column) whose centre is at or after the 28.4
@@ -40,6 +42,15 @@ pub(super) struct EdgeStepper {
 }
 
 impl EdgeStepper {
+    /// A placeholder (vertical at column 0) before the first edge is set.
+    pub(super) const NONE: Self = Self {
+        x: 0,
+        r: 0,
+        d: 1,
+        q_step: 0,
+        r_step: 0,
+    };
+
     /// Sets up the edge (x₀, y₀)→(x₁, y₁) (28.4) on scanline `row`.
     ///
     /// Magnitudes: with all coordinates within ±2^28 and `row`'s centre

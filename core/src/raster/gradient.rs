@@ -23,6 +23,13 @@ pub(super) struct Gradient {
     gy: i64,
     x0: i32,
     y0: i32,
+    /// The per-pixel step `gx·16 >> EXTRA`, rounded.
+    step: i64,
+    /// `|gx|, |gy| < 2^32`: then, for any pixel within ±2^16 and an
+    /// origin within ±2^28 (28.4), `|gx·px|, |gy·py| < 2^61` and
+    /// `|base| < 2^61` (values below 2^52 in 24.8 or 16.16), so the plane
+    /// needs no saturation.
+    small: bool,
 }
 
 /// The three vertices the planes are fitted through: positions (28.4) and
@@ -63,12 +70,15 @@ impl Gradient {
                 )
             }
         };
+        let lim = 1i64 << 32;
         Self {
             base: a[0] << EXTRA,
             gx,
             gy,
             x0,
             y0,
+            step: gx.saturating_add(1 << (EXTRA - 5)) >> (EXTRA - 4),
+            small: gx.abs() < lim && gy.abs() < lim && a[0].abs() < 1 << 52,
         }
     }
 
@@ -82,23 +92,29 @@ impl Gradient {
     /// sliver) the step is recomputed from the clamped ends, so the
     /// per-pixel loop never leaves the range and needs no clamp of its own.
     /// `hi − lo` must be below 2^31 so that the step fits in i32.
-    #[inline]
+    #[inline(always)]
     pub(super) fn span(&self, x: i32, y: i32, len: u32, lo: i32, hi: i32) -> (i32, i32) {
         let px = (x as i64) * 16 + 8 - self.x0 as i64;
         let py = (y as i64) * 16 + 8 - self.y0 as i64;
-        let v = self
-            .base
-            .saturating_add(self.gx.saturating_mul(px))
-            .saturating_add(self.gy.saturating_mul(py));
-        let start = v.saturating_add(1 << (EXTRA - 1)) >> EXTRA;
-        // One pixel is 16 units of 28.4: step = gx·16 >> EXTRA, rounded.
         let n = len.saturating_sub(1) as i64;
-        let step = if n == 0 {
-            0
-        } else {
-            self.gx.saturating_add(1 << (EXTRA - 5)) >> (EXTRA - 4)
-        };
-        let end = start.saturating_add(step.saturating_mul(n));
+        // One pixel is 16 units of 28.4: step = gx·16 >> EXTRA, rounded.
+        let step = if n == 0 { 0 } else { self.step };
+        let pixel_range = 1 << 16;
+        let (start, end) =
+            if self.small && x.abs() < pixel_range && y.abs() < pixel_range && len < 1 << 16 {
+                // See `small`; the span is clipped to the target, so
+                // n < 2^16 and |step·n| < 2^44.
+                let v = self.base + self.gx * px + self.gy * py;
+                let start = (v + (1 << (EXTRA - 1))) >> EXTRA;
+                (start, start + step * n)
+            } else {
+                let v = self
+                    .base
+                    .saturating_add(self.gx.saturating_mul(px))
+                    .saturating_add(self.gy.saturating_mul(py));
+                let start = v.saturating_add(1 << (EXTRA - 1)) >> EXTRA;
+                (start, start.saturating_add(step.saturating_mul(n)))
+            };
         let (lo64, hi64) = (lo as i64, hi as i64);
         if start >= lo64 && start <= hi64 && end >= lo64 && end <= hi64 {
             // In range at both ends, hence everywhere between; |step| ≤ hi − lo.

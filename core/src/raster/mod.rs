@@ -12,18 +12,22 @@
 //! edges down to the bottom vertex one scanline at a time with exact
 //! integer steppers (see the `edge` module), and emit `[left, right)` per
 //! row, scissored to the target's [`clip_rect`](crate::target::Target::clip_rect).
+//! A triangle (most of a mesh) walks its long edge against its two short
+//! edges instead, which gives the same spans without chain bookkeeping.
 //! Rows and columns are half-open at the same rule: row j is drawn when
 //! `y_top ≤ j + ½ < y_bottom`, pixel i when `x_left ≤ i + ½ < x_right`.
 //!
 //! Interpolated quantities (the depth key and the shader's varyings) are
 //! planes fitted once per polygon and evaluated once per span (see the
-//! `gradient` module); per pixel there is one add per quantity.
+//! `gradient` module); per pixel there is one add per quantity. On targets
+//! that expose their memory ([`Target::span_mut`]) the depth test and the
+//! write are fused into one loop per span.
 //!
 //! | piece | choices (all compile-time) |
 //! |---|---|
-//! | shader ([`SpanShader`]) | [`Flat`], [`Gouraud`] (colour ramp), [`AffineTexture`], [`PerspectiveTexture`] (exact, or runs of N) |
+//! | shader ([`SpanShader`]) | [`Flat`], [`Gouraud`] (colour ramp), [`AffineTexture`], [`LitAffineTexture`] (texture × intensity), [`PerspectiveTexture`] (exact, or runs of N) |
 //! | wrap ([`Wrap`]) | [`Repeat`], [`RepeatPow2`], [`Clamp`] |
-//! | depth ([`DepthTest`]) | [`NoDepth`] (free), [`DepthBuffer`] (u16 keys, less-than) |
+//! | depth ([`DepthTest`]) | [`NoDepth`] (free), [`DepthBuffer`] (u16 keys, or u32 24.8 depths; less-than) |
 //! | target | anything implementing [`Target`] |
 //!
 //! # Limits
@@ -49,10 +53,11 @@ mod gradient;
 mod shader;
 mod texture;
 
-pub use depth::{DEPTH_FRAC_BITS, DepthBuffer, DepthKey, DepthTest, NoDepth};
+pub use depth::{DEPTH_FRAC_BITS, DepthBuffer, DepthKey, DepthTest, NoDepth, StoredDepth};
 pub use shader::{Flat, Gouraud, Shade, SpanShader, VARYING_FRAC_BITS};
 pub use texture::{
-    AffineTexture, Clamp, PERSPECTIVE_Q_BITS, PerspectiveTexture, Repeat, RepeatPow2, Texture, Wrap,
+    AffineTexture, Clamp, LitAffineTexture, PERSPECTIVE_Q_BITS, PerspectiveTexture, Repeat,
+    RepeatPow2, Texture, Wrap,
 };
 
 use crate::target::Target;
@@ -122,7 +127,7 @@ impl<'v, const K: usize> Chain<'v, K> {
             bottom,
             forward,
             end_row: i32::MIN,
-            edge: EdgeStepper::new(0, 0, 0, 0, 0),
+            edge: EdgeStepper::NONE,
         }
     }
 
@@ -271,50 +276,120 @@ where
     let zmax = ((DepthKey::MAX as i32) << DEPTH_FRAC_BITS) | ((1 << DEPTH_FRAC_BITS) - 1);
     let (lo, hi) = Sh::RANGE;
 
-    let mut a = Chain::new(verts, top, bottom, true);
-    let mut b = Chain::new(verts, top, bottom, false);
-    let mut drawn = false;
-    for y in row0..row1 {
-        if !(a.seek(y) && b.seek(y)) {
-            break;
-        }
-        // The same ceil formula serves left and right edges (first centre
-        // at or right of the edge), so for convex input min/max is exactly
-        // [left, right) whatever the winding; for garbage it still yields
-        // one bounded span.
-        let (xa, xb) = (a.edge.x, b.edge.x);
-        a.edge.step();
-        b.edge.step();
-        let x0 = xa.min(xb).max(clip.x0 as i64);
-        let x1 = xa.max(xb).min(clip.x1 as i64);
-        if x0 >= x1 {
-            continue;
-        }
-        // In i32 range: clamped to the clip rectangle.
-        let (x, len) = (x0 as i32, (x1 - x0) as u32);
-        drawn = true;
-        let (z, dz) = if Z::ENABLED {
-            zgrad.span(x, y, len, 0, zmax)
-        } else {
-            (0, 0)
-        };
-        if let Some(c) = solid {
-            depth.test_span(y, x, len, z, dz, |off, run| {
-                target.fill_solid(y, x + off as i32, run, c);
-            });
-        } else {
-            let mut start = [0i32; K];
-            let mut step = [0i32; K];
-            for k in 0..K {
-                (start[k], step[k]) = vgrad[k].span(x, y, len, lo, hi);
-            }
-            depth.test_span(y, x, len, z, dz, |off, run| {
-                let mut v = start;
-                for k in 0..K {
-                    v[k] = v[k].wrapping_add(step[k].wrapping_mul(off as i32));
+    // One span: `[min(xa, xb), max(xa, xb))` of row `y`, scissored. The
+    // same ceil formula serves left and right edges (first centre at or
+    // right of the edge), so for convex input min/max is exactly
+    // [left, right) whatever the winding; for garbage it still yields one
+    // bounded span. Evaluates to whether anything was inside the clip. A
+    // macro rather than a closure so that both walks get it inlined.
+    macro_rules! span {
+        ($y:expr, $xa:expr, $xb:expr) => {{
+            let (y, xa, xb): (i32, i64, i64) = ($y, $xa, $xb);
+            let inside = 'span: {
+                let x0 = xa.min(xb).max(clip.x0 as i64);
+                let x1 = xa.max(xb).min(clip.x1 as i64);
+                if x0 >= x1 {
+                    break 'span false;
                 }
-                shader.shade_run(target, y, x + off as i32, run, v, step);
-            });
+                // In i32 range: clamped to the clip rectangle.
+                let (x, len) = (x0 as i32, (x1 - x0) as u32);
+                let (z, dz) = if Z::ENABLED {
+                    zgrad.span(x, y, len, 0, zmax)
+                } else {
+                    (0, 0)
+                };
+                if Z::ENABLED && Sh::PER_PIXEL {
+                    if let Some(pixels) = target.span_mut(y, x, len) {
+                        // Depth test and write fused in one loop.
+                        if let Some(c) = solid {
+                            depth.test_write(y, x, z, dz, pixels, |_| c);
+                        } else {
+                            let mut start = [0i32; K];
+                            let mut step = [0i32; K];
+                            for k in 0..K {
+                                (start[k], step[k]) = vgrad[k].span(x, y, len, lo, hi);
+                            }
+                            depth.test_write(y, x, z, dz, pixels, |i| {
+                                let mut v = start;
+                                for k in 0..K {
+                                    v[k] = v[k].wrapping_add(step[k].wrapping_mul(i as i32));
+                                }
+                                shader.color(&v)
+                            });
+                        }
+                        break 'span true;
+                    }
+                }
+                if let Some(c) = solid {
+                    depth.test_span(y, x, len, z, dz, |off, run| {
+                        target.fill_solid(y, x + off as i32, run, c);
+                    });
+                } else {
+                    let mut start = [0i32; K];
+                    let mut step = [0i32; K];
+                    for k in 0..K {
+                        (start[k], step[k]) = vgrad[k].span(x, y, len, lo, hi);
+                    }
+                    depth.test_span(y, x, len, z, dz, |off, run| {
+                        let mut v = start;
+                        for k in 0..K {
+                            v[k] = v[k].wrapping_add(step[k].wrapping_mul(off as i32));
+                        }
+                        shader.shade_run(target, y, x + off as i32, run, v, step);
+                    });
+                }
+                true
+            };
+            inside
+        }};
+    }
+
+    let mut drawn = false;
+    if let [v0, v1, v2] = *verts {
+        // Triangles (most of a mesh): the long edge top→bottom against the
+        // short edges top→mid and mid→bottom, no chain walking. These are
+        // the edges the chains would take, set up with the same rows, and
+        // an edge's value on a row does not depend on where its walk
+        // started (see `edge`), so the spans are identical.
+        let (mut t, mut m, mut b) = (v0, v1, v2);
+        if m.y < t.y {
+            core::mem::swap(&mut t, &mut m);
+        }
+        if b.y < m.y {
+            core::mem::swap(&mut m, &mut b);
+        }
+        if m.y < t.y {
+            core::mem::swap(&mut t, &mut m);
+        }
+        let mut long = EdgeStepper::new(t.x, t.y, b.x, b.y, row0);
+        let split = first_center(m.y).clamp(row0, row1);
+        if row0 < split {
+            let mut short = EdgeStepper::new(t.x, t.y, m.x, m.y, row0);
+            for y in row0..split {
+                drawn |= span!(y, long.x, short.x);
+                long.step();
+                short.step();
+            }
+        }
+        if split < row1 {
+            let mut short = EdgeStepper::new(m.x, m.y, b.x, b.y, split);
+            for y in split..row1 {
+                drawn |= span!(y, long.x, short.x);
+                long.step();
+                short.step();
+            }
+        }
+    } else {
+        let mut a = Chain::new(verts, top, bottom, true);
+        let mut b = Chain::new(verts, top, bottom, false);
+        for y in row0..row1 {
+            if !(a.seek(y) && b.seek(y)) {
+                break;
+            }
+            let (xa, xb) = (a.edge.x, b.edge.x);
+            a.edge.step();
+            b.edge.step();
+            drawn |= span!(y, xa, xb);
         }
     }
     if drawn {

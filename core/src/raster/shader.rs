@@ -20,6 +20,14 @@ pub trait SpanShader<const K: usize> {
     /// 2^31.
     const RANGE: (i32, i32) = (-(1 << 29), (1 << 29) - 1);
 
+    /// Whether [`Self::shade_run`] is the default (one [`Self::color`]
+    /// per pixel from linearly stepped varyings). Then the scan converter
+    /// may instead call [`Self::color`] directly for the pixels that pass
+    /// the depth test, fusing test and write in one loop. A shader that
+    /// overrides `shade_run` with different results must set this to
+    /// `false`.
+    const PER_PIXEL: bool = true;
+
     /// `Some(colour)` if every pixel gets the same colour; the scan
     /// converter then uses [`Target::fill_solid`](crate::target::Target::fill_solid)
     /// and skips the varyings.

@@ -739,3 +739,242 @@ proptest! {
         }
     }
 }
+
+/// A framebuffer that hides [`Target::span_mut`], forcing the run-splitting
+/// path of the depth test.
+struct Unfused<'a>(Framebuffer<'a, u8>);
+
+impl Target for Unfused<'_> {
+    type Color = u8;
+    fn clip_rect(&self) -> crate::target::Rect {
+        self.0.clip_rect()
+    }
+    fn fill_solid(&mut self, y: i32, x: i32, len: u32, color: u8) {
+        self.0.fill_solid(y, x, len, color);
+    }
+    fn fill_with<F: FnMut() -> u8>(&mut self, y: i32, x: i32, len: u32, colors: F) {
+        self.0.fill_with(y, x, len, colors);
+    }
+}
+
+proptest! {
+    /// The fused depth-test-and-write loop (slice targets) gives exactly
+    /// the pixels and keys of the run-splitting path, flat and Gouraud.
+    #[test]
+    fn fused_depth_write_matches_runs(
+        tris in proptest::collection::vec(
+            ((-40i32..360, -40i32..300, 0u16..=u16::MAX, 0i32..256),
+             (-40i32..360, -40i32..300, 0u16..=u16::MAX, 0i32..256),
+             (-40i32..360, -40i32..300, 0u16..=u16::MAX, 0i32..256)), 1..12),
+        gouraud in any::<bool>(),
+    ) {
+        let (w, h) = (40u16, 30u16);
+        let n = w as usize * h as usize;
+        let ramp = ramp_u8();
+        let (mut ca, mut za) = (vec![0u8; n], vec![u16::MAX; n]);
+        let (mut cb, mut zb) = (vec![0u8; n], vec![u16::MAX; n]);
+        {
+            let mut fa = Framebuffer::new(&mut ca, w, h, w as usize).unwrap();
+            let mut da = DepthBuffer::new(&mut za, w, h, w as usize, 0).unwrap();
+            let mut fb = Unfused(Framebuffer::new(&mut cb, w, h, w as usize).unwrap());
+            let mut db = DepthBuffer::new(&mut zb, w, h, w as usize, 0).unwrap();
+            for (k, &(a, b, c)) in tris.iter().enumerate() {
+                let v = |p: (i32, i32, u16, i32)| {
+                    ScreenVertex::new(p.0 * 2, p.1 * 2, p.2, [p.3 << 16])
+                };
+                let poly = [v(a), v(b), v(c)];
+                if gouraud {
+                    let g = Gouraud::new(&ramp);
+                    fill_polygon(&mut fa, &mut da, &g, &poly);
+                    fill_polygon(&mut fb, &mut db, &g, &poly);
+                } else {
+                    fill_polygon(&mut fa, &mut da, &Flat(k as u8 + 1), &poly);
+                    fill_polygon(&mut fb, &mut db, &Flat(k as u8 + 1), &poly);
+                }
+            }
+        }
+        prop_assert_eq!(ca, cb);
+        prop_assert_eq!(za, zb);
+    }
+}
+
+proptest! {
+    /// Subdivided perspective texturing writes the same pixels into a
+    /// slice target (run loop) as through `fill_with` (per-pixel closure).
+    #[test]
+    fn subdivided_perspective_slice_path_matches(
+        tris in proptest::collection::vec(
+            ((-40i32..360, -40i32..300, -600i32..600, -600i32..600, 1i32..(1 << 24)),
+             (-40i32..360, -40i32..300, -600i32..600, -600i32..600, 1i32..(1 << 24)),
+             (-40i32..360, -40i32..300, -600i32..600, -600i32..600, 1i32..(1 << 24))), 1..8),
+    ) {
+        let texels: Vec<u8> = (0..64u32).map(|i| (i * 37 % 251) as u8).collect();
+        let tex = Texture::new(&texels, 8, 8, 8).unwrap();
+        let sh = PerspectiveTexture::<_, RepeatPow2, 16>::new(tex).unwrap();
+        let (w, h) = (40u16, 30u16);
+        let n = w as usize * h as usize;
+        let (mut ca, mut cb) = (vec![0u8; n], vec![0u8; n]);
+        {
+            let mut fa = Framebuffer::new(&mut ca, w, h, w as usize).unwrap();
+            let mut fb = Unfused(Framebuffer::new(&mut cb, w, h, w as usize).unwrap());
+            for &(a, b, c) in &tris {
+                // Varyings u·q, v·q (16.16) and q (8.24) as the pipeline
+                // makes them.
+                let v = |p: (i32, i32, i32, i32, i32)| {
+                    let uq = ((p.2 as i64 * p.4 as i64) >> 8) as i32;
+                    let vq = ((p.3 as i64 * p.4 as i64) >> 8) as i32;
+                    ScreenVertex::new(p.0 * 2, p.1 * 2, 0, [uq, vq, p.4])
+                };
+                let poly = [v(a), v(b), v(c)];
+                fill_polygon(&mut fa, &mut NoDepth, &sh, &poly);
+                fill_polygon(&mut fb, &mut NoDepth, &sh, &poly);
+            }
+        }
+        prop_assert_eq!(ca, cb);
+    }
+}
+
+#[test]
+fn lit_affine_texture_scales_texels() {
+    use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+    let texels: Vec<Rgb565> = (0..16u8)
+        .map(|i| Rgb565::new(i * 2, 63 - i * 3, 31 - i))
+        .collect();
+    let tex = Texture::new(&texels, 4, 4, 4).unwrap();
+    let plain = AffineTexture::<_, RepeatPow2>::new(tex).unwrap();
+    let lit = LitAffineTexture::<_, RepeatPow2>::new(tex).unwrap();
+    let (w, h) = (12u16, 10u16);
+    let n = w as usize * h as usize;
+    for i in [0u8, 1, 77, 128, 254, 255] {
+        let (mut a, mut b) = (vec![Rgb565::BLACK; n], vec![Rgb565::BLACK; n]);
+        {
+            let mut fa = Framebuffer::new(&mut a, w, h, w as usize).unwrap();
+            let mut fb = Framebuffer::new(&mut b, w, h, w as usize).unwrap();
+            let iv = (i as i32) << 16;
+            let uv = |x: i32, y: i32, u: i32, v: i32| (x * 16, y * 16, u << 16, v << 16);
+            let quad = [
+                uv(0, 0, 0, 0),
+                uv(12, 1, 9, 0),
+                uv(11, 10, 9, 7),
+                uv(1, 9, 0, 7),
+            ];
+            let pa: Vec<ScreenVertex<2>> = quad
+                .iter()
+                .map(|&(x, y, u, v)| ScreenVertex::new(x, y, 0, [u, v]))
+                .collect();
+            let pb: Vec<ScreenVertex<3>> = quad
+                .iter()
+                .map(|&(x, y, u, v)| ScreenVertex::new(x, y, 0, [iv, u, v]))
+                .collect();
+            fill_polygon(&mut fa, &mut NoDepth, &plain, &pa);
+            fill_polygon(&mut fb, &mut NoDepth, &lit, &pb);
+        }
+        for (p, q) in a.iter().zip(&b) {
+            assert_eq!(p.scale(i), *q, "intensity {i}");
+        }
+    }
+}
+
+proptest! {
+    /// The triangle walker gives exactly the chain walker's pixels and
+    /// keys: the same triangle with a repeated vertex goes through the
+    /// general path.
+    #[test]
+    fn triangle_path_matches_general_path(
+        tri in proptest::array::uniform3((-300i32..900, -300i32..700, 0u16..=u16::MAX, 0i32..256)),
+        clip_x in 0u16..30, clip_y in 0u16..20,
+    ) {
+        let (w, h) = (40u16, 30u16);
+        let n = w as usize * h as usize;
+        let ramp = ramp_u8();
+        let v = |p: (i32, i32, u16, i32)| ScreenVertex::new(p.0, p.1, p.2, [p.3 << 16]);
+        let t3 = [v(tri[0]), v(tri[1]), v(tri[2])];
+        let t4 = [t3[0], t3[1], t3[2], t3[2]];
+        let mut out = Vec::new();
+        for poly in [&t3[..], &t4[..]] {
+            let (mut c, mut z) = (vec![0u8; n], vec![u16::MAX; n]);
+            let o = {
+                let mut band = Band::new(&mut c, w, h - clip_y, w as usize, clip_y as i32).unwrap();
+                let mut d = DepthBuffer::new(&mut z, w - clip_x, h, w as usize, 0).unwrap();
+                fill_polygon(&mut band, &mut d, &Gouraud::new(&ramp), poly)
+            };
+            out.push((o, c, z));
+        }
+        prop_assert_eq!(&out[0], &out[1]);
+    }
+}
+
+/// Draws two triangles covering the same 32×32 square in both orders with
+/// a `K` depth buffer; returns how many pixels differ between the orders.
+fn crossing_planes_order_dependence<K: StoredDepth>(far: K) -> usize {
+    let (w, h) = (32u16, 32u16);
+    let n = w as usize * h as usize;
+    // Two planes that cross along the diagonal and differ by at most 1.5
+    // keys over the square: with 16-bit keys most pixels tie.
+    let a = |c| {
+        let v = |x: i32, y: i32, z: u16| ScreenVertex::new(x * 16, y * 16, z, [0; 0]);
+        (c, [v(-40, -40, 1000), v(80, -40, 1001), v(-40, 80, 1001)])
+    };
+    let b = |c| {
+        let v = |x: i32, y: i32, z: u16| ScreenVertex::new(x * 16, y * 16, z, [0; 0]);
+        (c, [v(-40, -40, 1001), v(80, -40, 1000), v(-40, 80, 1000)])
+    };
+    let mut out = Vec::new();
+    for order in [[a(1u8), b(2u8)], [b(2u8), a(1u8)]] {
+        let (mut c, mut z) = (vec![0u8; n], vec![far; n]);
+        {
+            let mut fb = Framebuffer::new(&mut c, w, h, w as usize).unwrap();
+            let mut d = DepthBuffer::new(&mut z, w, h, w as usize, 0).unwrap();
+            for (col, tri) in &order {
+                fill_polygon(&mut fb, &mut d, &Flat(*col), tri);
+            }
+        }
+        out.push(c);
+    }
+    out[0].iter().zip(&out[1]).filter(|(p, q)| p != q).count()
+}
+
+#[test]
+fn u32_depth_keeps_the_interpolated_fraction() {
+    // u16: pixels whose keys tie keep whichever triangle came first.
+    let d16 = crossing_planes_order_dependence::<u16>(u16::MAX);
+    // u32 (24.8): the planes decide everywhere but on the crossing line.
+    let d32 = crossing_planes_order_dependence::<u32>(u32::MAX);
+    std::println!("order-dependent pixels: u16 {d16}, u32 {d32}");
+    assert!(d16 > 300, "u16: {d16} pixels depend on the order");
+    assert!(d32 <= 32, "u32: {d32} pixels depend on the order");
+}
+
+proptest! {
+    /// With well separated depths (whole keys apart at every pixel) the
+    /// u32 buffer draws exactly what the u16 buffer draws.
+    #[test]
+    fn u32_depth_matches_u16_when_keys_differ(
+        zs in proptest::collection::vec(0u16..60, 2..6),
+    ) {
+        let (w, h) = (24u16, 20u16);
+        let n = w as usize * h as usize;
+        let tris: Vec<[ScreenVertex<0>; 3]> = zs.iter().enumerate().map(|(k, &z)| {
+            let z = z * 1000; // constant depth per triangle
+            let o = k as i32 * 32;
+            [ScreenVertex::new(o, 0, z, []), ScreenVertex::new(o + 300, 40, z, []),
+             ScreenVertex::new(o + 20, 320, z, [])]
+        }).collect();
+        let (mut c16, mut z16) = (vec![0u8; n], vec![u16::MAX; n]);
+        let (mut c32, mut z32) = (vec![0u8; n], vec![u32::MAX; n]);
+        {
+            let mut f16 = Framebuffer::new(&mut c16, w, h, w as usize).unwrap();
+            let mut d16 = DepthBuffer::new(&mut z16, w, h, w as usize, 0).unwrap();
+            let mut f32_ = Framebuffer::new(&mut c32, w, h, w as usize).unwrap();
+            let mut d32 = DepthBuffer::new(&mut z32, w, h, w as usize, 0).unwrap();
+            for (k, t) in tris.iter().enumerate() {
+                fill_polygon(&mut f16, &mut d16, &Flat(k as u8 + 1), t);
+                fill_polygon(&mut f32_, &mut d32, &Flat(k as u8 + 1), t);
+            }
+        }
+        prop_assert_eq!(c16, c32);
+        for (a, b) in z16.iter().zip(&z32) {
+            prop_assert_eq!(*a as u32, if *b == u32::MAX { u16::MAX as u32 } else { *b >> 8 });
+        }
+    }
+}

@@ -15,7 +15,7 @@
 //!   runs of `N` pixels and steps linearly between them (the classic
 //!   subdivided affine compromise: two divisions per run).
 
-use super::shader::{SpanShader, VARYING_FRAC_BITS};
+use super::shader::{Shade, SpanShader, VARYING_FRAC_BITS};
 use crate::target::{BufferError, Target, layout::Layout};
 use core::fmt::Debug;
 
@@ -181,6 +181,47 @@ impl<C: Copy, W: Wrap> SpanShader<2> for AffineTexture<'_, C, W> {
     }
 }
 
+/// Affine texture mapping modulated by Gouraud intensity: varyings
+/// (intensity 0..=255, u, v), all 16.16, as
+/// [`IntensityUv`](crate::pipeline::IntensityUv) vertices produce. Each
+/// pixel is its texel scaled by the interpolated intensity
+/// ([`Shade::scale`]), so full intensity (255) gives exactly
+/// [`AffineTexture`]'s colour.
+///
+/// Per pixel: the affine texture's work plus one scale per channel.
+#[derive(Clone, Copy, Debug)]
+pub struct LitAffineTexture<'a, C, W> {
+    tex: Texture<'a, C>,
+    wrap: W,
+}
+
+impl<'a, C: Shade, W: Wrap> LitAffineTexture<'a, C, W> {
+    /// A lit affine texture shader; `None` if `W` does not accept the
+    /// texture's size.
+    #[must_use]
+    pub fn new(tex: Texture<'a, C>) -> Option<Self> {
+        (W::accepts(tex.width) && W::accepts(tex.height)).then(|| Self {
+            tex,
+            wrap: W::default(),
+        })
+    }
+}
+
+impl<C: Shade, W: Wrap> SpanShader<3> for LitAffineTexture<'_, C, W> {
+    type Color = C;
+
+    #[inline]
+    fn color(&self, v: &[i32; 3]) -> C {
+        let _ = self.wrap;
+        // The intensity varying shares the default range with u and v, so
+        // clamp it into 0..=255 here.
+        let i = (v[0] >> VARYING_FRAC_BITS).clamp(0, 255) as u8;
+        self.tex
+            .sample::<W>(v[1] >> VARYING_FRAC_BITS, v[2] >> VARYING_FRAC_BITS)
+            .scale(i)
+    }
+}
+
 /// Perspective-correct texture mapping from the varyings
 /// (u·q, v·q, q) with `q = near/z`: (u, v) = (u·q / q, v·q / q).
 ///
@@ -205,6 +246,38 @@ impl<'a, C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'a, C, W, N> {
     }
 }
 
+impl<C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'_, C, W, N> {
+    /// Pixels of one run from (u, v) = `a` stepping by `d` (16.16).
+    #[inline]
+    fn fill_run(&self, run: &mut [C], a: (i64, i64), d: (i64, i64)) {
+        let last = run.len().saturating_sub(1) as i64;
+        let fits = |v: i64, dv: i64| {
+            let end = dv.saturating_mul(last).saturating_add(v);
+            i32::try_from(v).is_ok() && i32::try_from(end).is_ok()
+        };
+        if fits(a.0, d.0) && fits(a.1, d.1) {
+            // Every value lies between the two ends, so i32 holds them all
+            // and `>> 16` equals `texel_coord`.
+            let (mut u, mut v) = (a.0 as i32, a.1 as i32);
+            let (du, dv) = (d.0 as i32, d.1 as i32);
+            for p in run {
+                *p = self
+                    .tex
+                    .sample::<W>(u >> VARYING_FRAC_BITS, v >> VARYING_FRAC_BITS);
+                u = u.wrapping_add(du);
+                v = v.wrapping_add(dv);
+            }
+        } else {
+            let mut cur = a;
+            for p in run {
+                *p = self.tex.sample::<W>(texel_coord(cur.0), texel_coord(cur.1));
+                cur.0 += d.0;
+                cur.1 += d.1;
+            }
+        }
+    }
+}
+
 /// (u, v) in 16.16 from (u·q, v·q) in 16.16 and q in 8.24.
 #[inline]
 fn divide(v: &[i32; 3]) -> (i64, i64) {
@@ -224,6 +297,9 @@ fn texel_coord(u: i64) -> i32 {
 
 impl<C: Copy, W: Wrap, const N: u32> SpanShader<3> for PerspectiveTexture<'_, C, W, N> {
     type Color = C;
+    // Runs of N > 1 step between exact divisions, which `color` alone
+    // cannot reproduce.
+    const PER_PIXEL: bool = N <= 1;
 
     #[inline]
     fn color(&self, v: &[i32; 3]) -> C {
@@ -263,6 +339,25 @@ impl<C: Copy, W: Wrap, const N: u32> SpanShader<3> for PerspectiveTexture<'_, C,
                 start[2].wrapping_add(step[2].wrapping_mul(i)),
             ])
         };
+        if let Some(pixels) = target.span_mut(y, x, len) {
+            // Slice target: the same values as the general path below, one
+            // run of N at a time in a tight loop.
+            let mut i = 0u32;
+            for run in pixels.chunks_mut(N as usize) {
+                let seg = run.len() as u32;
+                let a = at(i);
+                let (du, dv) = if seg > 1 {
+                    let b = at(i + seg - 1);
+                    let n = seg as i64 - 1;
+                    ((b.0 - a.0) / n, (b.1 - a.1) / n)
+                } else {
+                    (0, 0)
+                };
+                self.fill_run(run, a, (du, dv));
+                i += seg;
+            }
+            return;
+        }
         let mut i = 0u32;
         let mut cur = at(0);
         let (mut du, mut dv) = (0i64, 0i64);

@@ -4,7 +4,7 @@ use super::Scalar;
 use super::float_math as m;
 
 macro_rules! impl_float {
-    ($t:ty, $name:literal, $sqrt:path, $sincos:path, $atan2:path, $asin:path, $round:path) => {
+    ($t:ty, $name:literal, $sqrt:path, $sincos:path, $atan2:path, $asin:path) => {
         impl Scalar for $t {
             const ZERO: Self = 0.0;
             const ONE: Self = 1.0;
@@ -98,12 +98,31 @@ macro_rules! impl_float {
             }
             #[inline]
             fn to_subpixel(self, frac_bits: u32) -> Option<i32> {
-                let v = $round(self * (1u32 << frac_bits.min(24)) as $t);
-                // Strict bounds: 2^31 is exactly representable, i32::MAX is not.
-                if (-2_147_483_648.0..2_147_483_648.0).contains(&v) {
-                    Some(v as i32)
+                // Round half away from zero, as `libm::round`, without the
+                // call (this runs per projected vertex): truncate, then
+                // look at the exact remainder. Accepted exactly when the
+                // rounded value lies in [−2^31, 2^31).
+                let s = self * (1u32 << frac_bits.min(24)) as $t;
+                // s > −2^31 − 1 (f64), or s ≥ −2^31 (f32, where the
+                // constant rounds to −2^31 and nothing lies between), and
+                // s < 2^31; false for NaN and ±∞. No f64 arithmetic for
+                // f32, which matters on soft-float cores.
+                let lo = -2_147_483_649.0 as $t;
+                let min = -2_147_483_648.0 as $t;
+                if !((s > lo || s == min) && s < 2_147_483_648.0) {
+                    return None;
+                }
+                // |s| < 2^31 + 1: the cast truncates toward zero without
+                // saturating, and `s − t` is exact (t is s itself when s
+                // is too large to have a fraction).
+                let t = s as i32;
+                let f = s - t as $t;
+                if f >= 0.5 {
+                    t.checked_add(1)
+                } else if f <= -0.5 {
+                    t.checked_sub(1)
                 } else {
-                    None
+                    Some(t)
                 }
             }
         }
@@ -115,13 +134,5 @@ fn finite<T: Scalar>(v: T) -> Option<T> {
     if v.is_finite() { Some(v) } else { None }
 }
 
-impl_float!(
-    f32,
-    "f32",
-    m::sqrtf,
-    m::sincosf,
-    m::atan2f,
-    m::asinf,
-    m::roundf
-);
-impl_float!(f64, "f64", m::sqrt, m::sincos, m::atan2, m::asin, m::round);
+impl_float!(f32, "f32", m::sqrtf, m::sincosf, m::atan2f, m::asinf);
+impl_float!(f64, "f64", m::sqrt, m::sincos, m::atan2, m::asin);

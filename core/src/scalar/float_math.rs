@@ -36,11 +36,3 @@ pub(crate) fn asinf(x: f32) -> f32 {
 pub(crate) fn asin(x: f64) -> f64 {
     libm::asin(x)
 }
-#[inline]
-pub(crate) fn roundf(x: f32) -> f32 {
-    libm::roundf(x)
-}
-#[inline]
-pub(crate) fn round(x: f64) -> f64 {
-    libm::round(x)
-}

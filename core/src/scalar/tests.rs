@@ -124,6 +124,79 @@ fn checked_ops_report_overflow<T: Scalar>() {
     assert!(!flag);
 }
 
+/// The float path against `round` (half away from zero) and the range
+/// rule, on ties, near-ties and both ends of the i32 range.
+#[test]
+fn float_to_subpixel_matches_libm_round() {
+    let want64 = |x: f64, bits: u32| {
+        let v = libm::round(x * (1u32 << bits) as f64);
+        (-2_147_483_648.0..2_147_483_648.0)
+            .contains(&v)
+            .then_some(v as i32)
+    };
+    let want32 = |x: f32, bits: u32| {
+        let v = libm::roundf(x * (1u32 << bits) as f32);
+        (-2_147_483_648.0..2_147_483_648.0)
+            .contains(&v)
+            .then_some(v as i32)
+    };
+    let mut xs: std::vec::Vec<f64> = std::vec![
+        0.0,
+        -0.0,
+        0.5,
+        -0.5,
+        1.5,
+        -2.5,
+        0.49999999999999994,
+        -0.49999999999999994,
+        2147483647.0,
+        2147483647.4,
+        2147483647.5,
+        2147483647.6,
+        2147483648.0,
+        -2147483648.0,
+        -2147483648.4,
+        -2147483648.5,
+        -2147483648.6,
+        -2147483649.0,
+        1e300,
+        -1e300,
+        f64::NAN,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        4503599627370497.0,
+    ];
+    let mut rng = crate::test_util::Rng::new(0x5b);
+    for _ in 0..20000 {
+        let e = rng.range(-12.0, 33.0);
+        let x = rng.range(-1.0, 1.0) * libm::exp2(e);
+        xs.push(x);
+        xs.push((x * 2.0).round() / 2.0); // ties
+        xs.push(libm::nextafter((x * 2.0).round() / 2.0, 0.0)); // near ties
+    }
+    for &x in &xs {
+        for bits in [0, 4, 16, 24] {
+            assert_eq!(
+                x.to_subpixel(bits),
+                want64(x, bits),
+                "f64 {x:e} bits {bits}"
+            );
+            let y = x as f32;
+            assert_eq!(
+                y.to_subpixel(bits),
+                want32(y, bits),
+                "f32 {y:e} bits {bits}"
+            );
+            let z = libm::nextafterf(y, 0.0);
+            assert_eq!(
+                z.to_subpixel(bits),
+                want32(z, bits),
+                "f32 {z:e} bits {bits}"
+            );
+        }
+    }
+}
+
 fn to_subpixel_rounds_to_nearest<T: Scalar>() {
     let v = |x: f64| T::from_f64(x);
     assert_eq!(v(1.5).to_subpixel(4), Some(24));

@@ -87,6 +87,11 @@ impl<C: Copy> Target for Framebuffer<'_, C> {
     fn fill_with<F: FnMut() -> C>(&mut self, y: i32, x: i32, len: u32, colors: F) {
         fill_with(self.buf, &self.layout, y, x, len, colors);
     }
+
+    #[inline]
+    fn span_mut(&mut self, y: i32, x: i32, len: u32) -> Option<&mut [C]> {
+        span_mut(self.buf, &self.layout, y, x, len)
+    }
 }
 
 /// Rows `y0..y0+rows` of a taller frame, in a buffer that holds only those
@@ -195,6 +200,24 @@ impl<C: Copy> Target for Band<'_, C> {
     fn fill_with<F: FnMut() -> C>(&mut self, y: i32, x: i32, len: u32, colors: F) {
         fill_with(self.buf, &self.layout, y, x, len, colors);
     }
+
+    #[inline]
+    fn span_mut(&mut self, y: i32, x: i32, len: u32) -> Option<&mut [C]> {
+        span_mut(self.buf, &self.layout, y, x, len)
+    }
+}
+
+/// The whole span `x..x+len` of row `y`, or `None` if any of it is
+/// outside.
+#[inline]
+fn span_mut<'b, C>(
+    buf: &'b mut [C],
+    layout: &Layout,
+    y: i32,
+    x: i32,
+    len: u32,
+) -> Option<&'b mut [C]> {
+    buf.get_mut(layout.span_exact(y, x, len)?)
 }
 
 #[inline]

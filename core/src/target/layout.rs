@@ -117,8 +117,60 @@ impl Layout {
         Some(((a - x0) as u32, base + a as usize..base + b as usize))
     }
 
+    /// The buffer range of span `x..x+len` on frame row `y` when all of it
+    /// is inside (`len ≥ 1`), else `None`: what [`Self::span`] returns
+    /// with `skip = 0` and the full length, in a few instructions for the
+    /// scan converter's per-span fast paths.
+    #[inline]
+    pub(crate) fn span_exact(&self, y: i32, x: i32, len: u32) -> Option<Range<usize>> {
+        // Exact row test: y − y0 wraps to ≥ 2^31 > height whenever y < y0
+        // or the true difference exceeds i32.
+        let row = y.wrapping_sub(self.y0) as u32;
+        let w = self.width as u32;
+        if row >= self.height as u32 || x < 0 || len == 0 || len > w || x as u32 > w - len {
+            return None;
+        }
+        let start = row as usize * self.stride + x as usize;
+        Some(start..start + len as usize)
+    }
+
     /// Buffer index of pixel (x, y), if inside.
     pub(crate) fn index(&self, x: i32, y: i32) -> Option<usize> {
         self.span(y, x, 1).map(|(_, r)| r.start)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn span_exact_is_span_without_clipping() {
+        for y0 in [-5, 0, 3, i32::MIN + 1, i32::MAX - 20] {
+            let l = Layout::new(10 * 7, 9, 7, 10, y0).unwrap();
+            for y in [
+                y0.saturating_sub(1),
+                y0,
+                y0 + 3,
+                y0 + 6,
+                y0.saturating_add(7),
+                i32::MIN,
+                i32::MAX,
+            ] {
+                for x in [-3, -1, 0, 1, 5, 8, 9, 12, i32::MIN, i32::MAX] {
+                    for len in [0, 1, 2, 4, 9, 10, u32::MAX] {
+                        let want = match l.span(y, x, len) {
+                            Some((0, r)) if r.len() == len as usize => Some(r),
+                            _ => None,
+                        };
+                        assert_eq!(
+                            l.span_exact(y, x, len),
+                            want,
+                            "y0 {y0} y {y} x {x} len {len}"
+                        );
+                    }
+                }
+            }
+        }
     }
 }

@@ -89,6 +89,17 @@ pub trait Target {
     /// that is written, in order; pixels clipped away at the left are
     /// still generated (and discarded) so that the colours stay aligned.
     fn fill_with<F: FnMut() -> Self::Color>(&mut self, y: i32, x: i32, len: u32, colors: F);
+
+    /// Direct access to pixels `x..x+len` of row `y`, when the target
+    /// stores them contiguously in memory and the whole span is inside:
+    /// `None` otherwise (the default). The scan converter then depth-tests
+    /// and writes each pixel in one loop instead of splitting the span
+    /// into runs.
+    #[inline]
+    fn span_mut(&mut self, y: i32, x: i32, len: u32) -> Option<&mut [Self::Color]> {
+        let _ = (y, x, len);
+        None
+    }
 }
 
 impl<T: Target + ?Sized> Target for &mut T {
@@ -101,6 +112,10 @@ impl<T: Target + ?Sized> Target for &mut T {
     }
     fn fill_with<F: FnMut() -> Self::Color>(&mut self, y: i32, x: i32, len: u32, colors: F) {
         (**self).fill_with(y, x, len, colors);
+    }
+    #[inline]
+    fn span_mut(&mut self, y: i32, x: i32, len: u32) -> Option<&mut [Self::Color]> {
+        (**self).span_mut(y, x, len)
     }
 }
 

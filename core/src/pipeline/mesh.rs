@@ -1,0 +1,188 @@
+//! Indexed meshes: project each shared vertex once, then assemble
+//! triangles.
+//!
+//! [`Pipeline::project_polygon`] clips and projects every polygon on its
+//! own, so a closed mesh projects each vertex about six times and runs the
+//! six-plane clipper on triangles that are nowhere near a plane. Here each
+//! vertex is classified against the planes (an *outcode*, one bit per
+//! plane outside) and projected once into caller-supplied scratch
+//! ([`MeshVertex`]); then per triangle:
+//!
+//! - all three outcodes zero (the common case): the three projected
+//!   vertices are used directly;
+//! - one plane has all three vertices outside: nothing is visible;
+//! - otherwise the triangle goes through [`Pipeline::project_polygon`].
+//!
+//! Clipping a polygon whose vertices are all inside returns it unchanged,
+//! and projection is per vertex, so the result is bit-identical to
+//! [`Pipeline::project_polygon`] in every case: the same pixels, and the
+//! same watertightness along edges shared with clipped neighbours.
+
+use super::{Cull, DrawError, Pipeline, ScreenPolygon, Varyings, Vertex};
+use crate::raster::ScreenVertex;
+use crate::scalar::Scalar;
+
+/// A mesh vertex after [`Pipeline::project_vertex`]: the planes it lies
+/// outside of, and its projection when it lies inside all of them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MeshVertex<const K: usize> {
+    /// Bit `i` set: outside plane `i` of the frustum. Bit 7 set: not
+    /// finite, or the projection overflowed.
+    pub outcode: u8,
+    /// The projected vertex; meaningful only when `outcode == 0`.
+    pub screen: ScreenVertex<K>,
+}
+
+/// The outcode bit for a vertex that cannot be used directly (not
+/// finite, or its projection failed): triangles using it always take the
+/// clipping path, which reports the error as
+/// [`Pipeline::project_polygon`] does.
+const UNUSABLE: u8 = 0x80;
+
+impl<const K: usize> Default for MeshVertex<K> {
+    fn default() -> Self {
+        Self {
+            outcode: UNUSABLE,
+            screen: ScreenVertex::new(0, 0, 0, [0; K]),
+        }
+    }
+}
+
+/// A triangle ready for [`fill_polygon`](crate::raster::fill_polygon).
+#[derive(Clone, Debug)]
+pub enum MeshTriangle<const K: usize> {
+    /// Entirely inside the volume: the three projected vertices.
+    Inside([ScreenVertex<K>; 3]),
+    /// Crossed a plane: the clipped, projected polygon.
+    Clipped(ScreenPolygon<K>),
+}
+
+impl<const K: usize> MeshTriangle<K> {
+    /// The vertices.
+    #[must_use]
+    pub fn as_slice(&self) -> &[ScreenVertex<K>] {
+        match self {
+            Self::Inside(v) => v,
+            Self::Clipped(p) => p,
+        }
+    }
+}
+
+impl<S: Scalar> Pipeline<S> {
+    /// Classifies a view-space vertex against the frustum and, when it is
+    /// inside every plane, projects it (see the [`mesh`](self) module).
+    /// A vertex that is not finite or cannot be projected (overflow) is
+    /// marked unusable, so triangles using it take the clipping path,
+    /// which reports the error.
+    #[must_use]
+    pub fn project_vertex<A: Varyings<S, K>, const K: usize>(
+        &self,
+        v: &Vertex<S, A>,
+    ) -> MeshVertex<K> {
+        if !(v.pos.is_finite() && v.attr.is_finite()) {
+            return MeshVertex::default();
+        }
+        let mut outcode = 0u8;
+        for (i, plane) in self.frustum.planes().iter().enumerate() {
+            if plane.distance(v.pos) < S::ZERO {
+                outcode |= 1 << i;
+            }
+        }
+        if outcode != 0 {
+            return MeshVertex {
+                outcode,
+                ..MeshVertex::default()
+            };
+        }
+        match self.project(v) {
+            Some(screen) => MeshVertex { outcode, screen },
+            None => MeshVertex::default(),
+        }
+    }
+
+    /// Projects every vertex of `verts` into `out` (pairwise; extra
+    /// entries of either slice are left alone).
+    pub fn project_vertices<A: Varyings<S, K>, const K: usize>(
+        &self,
+        verts: &[Vertex<S, A>],
+        out: &mut [MeshVertex<K>],
+    ) {
+        for (o, v) in out.iter_mut().zip(verts) {
+            *o = self.project_vertex(v);
+        }
+    }
+
+    /// Triangle `tri` (indices into `verts` and `projected`, which
+    /// [`Self::project_vertices`] filled from `verts`) ready to fill, with
+    /// face culling applied: `Ok(None)` if culled or entirely outside.
+    /// Bit-identical to [`Self::project_polygon`] of the three vertices.
+    ///
+    /// # Errors
+    /// As [`Self::project_polygon`]; an index out of range is reported as
+    /// [`DrawError::Projection`].
+    #[inline]
+    pub fn mesh_triangle<A, const K: usize>(
+        &self,
+        verts: &[Vertex<S, A>],
+        projected: &[MeshVertex<K>],
+        tri: [u32; 3],
+    ) -> Result<Option<MeshTriangle<K>>, DrawError>
+    where
+        A: Varyings<S, K>,
+    {
+        let get = |i: u32| projected.get(i as usize).ok_or(DrawError::Projection);
+        let (a, b, c) = (get(tri[0])?, get(tri[1])?, get(tri[2])?);
+        if a.outcode | b.outcode | c.outcode == 0 {
+            let s = [a.screen, b.screen, c.screen];
+            return Ok(self.keep(&s).then_some(MeshTriangle::Inside(s)));
+        }
+        if a.outcode & b.outcode & c.outcode & !UNUSABLE != 0 {
+            // All three outside one plane: clipping would leave nothing.
+            return Ok(None);
+        }
+        let vget = |i: u32| verts.get(i as usize).copied().ok_or(DrawError::Projection);
+        let poly = [vget(tri[0])?, vget(tri[1])?, vget(tri[2])?];
+        Ok(self.project_polygon(&poly)?.map(MeshTriangle::Clipped))
+    }
+
+    /// Whether face culling keeps a projected polygon (the rule of
+    /// [`Self::project_polygon`]).
+    #[inline]
+    pub(super) fn keep<const K: usize>(&self, screen: &[ScreenVertex<K>]) -> bool {
+        if self.cull == Cull::None {
+            return true;
+        }
+        let Some(&last) = screen.last() else {
+            return true;
+        };
+        let lim = crate::raster::COORD_LIMIT.unsigned_abs();
+        let front = if let ([a, b, c], true) = (
+            screen,
+            screen
+                .iter()
+                .all(|v| v.x.unsigned_abs() <= lim && v.y.unsigned_abs() <= lim),
+        ) {
+            // A triangle within ±2^28: edge vectors below 2^29, products
+            // below 2^58, so i64 is exact (and equals the shoelace sum).
+            let e1 = (b.x as i64 - a.x as i64, b.y as i64 - a.y as i64);
+            let e2 = (c.x as i64 - a.x as i64, c.y as i64 - a.y as i64);
+            e1.0 * e2.1 - e1.1 * e2.0 < 0
+        } else {
+            shoelace_front(screen, last)
+        };
+        !((self.cull == Cull::Back && !front) || (self.cull == Cull::Front && front))
+    }
+}
+
+/// Front-facing (negative shoelace area, y down) for any polygon.
+fn shoelace_front<const K: usize>(screen: &[ScreenVertex<K>], last: ScreenVertex<K>) -> bool {
+    // i128: coordinates may reach 2^31 (the scan converter rejects beyond
+    // 2^28 later).
+    let mut area2: i128 = 0;
+    let mut prev = last;
+    for &v in screen {
+        area2 += prev.x as i128 * v.y as i128 - prev.y as i128 * v.x as i128;
+        prev = v;
+    }
+    area2 < 0
+}

@@ -1,0 +1,312 @@
+//! Benchmark workloads W1 (flat) and W2 (Gouraud): the Stanford bunny
+//! rendered at 320×240 RGB565 with a u16 depth buffer, exactly as defined
+//! in `docs/raster-workloads.md` (the peers' definitions), through
+//! sightline's own camera, pose, pipeline and raster API.
+//!
+//! The workload's eye space is right-handed with y up, looking down −z.
+//! sightline's view space is (x, −y, −z) of that, which is exactly what
+//! [`Camera::from_angles`] at the origin with zero angles produces, so the
+//! frame-k transform `T(0, 0, −2.6)·Ry(2πk/N)` is the object pose
+//! `Pose { origin: (0, 0, −2.6), yaw: 2πk/N }` seen by that camera.
+
+use crate::obj::{self, Mesh};
+use embedded_graphics::pixelcolor::Rgb565;
+use sightline::camera::{Camera, Projection};
+use sightline::math::Vec3;
+use sightline::pipeline::{Cull, Intensity, MeshVertex, Pipeline, Vertex};
+use sightline::raster::{DepthBuffer, FillOutcome, Flat, Gouraud, fill_polygon};
+use sightline::scalar::Scalar;
+use sightline::target::Framebuffer;
+use sightline::transform::{Euler, Pose};
+
+/// Viewport width in pixels.
+pub const WIDTH: u16 = 320;
+/// Viewport height in pixels.
+pub const HEIGHT: u16 = 240;
+/// Focal length in pixels.
+pub const FOCUS: f64 = 200.0;
+/// Bounding-box centre of the bunny, subtracted before scaling.
+pub const CENTRE: [f64; 3] = [-0.0048125, 4.8257995, 0.040403];
+/// Divisor that makes the bunny's largest axis span exactly [−1, 1].
+pub const SCALE: f64 = 4.9536625;
+/// Distance of the model from the eye.
+pub const DISTANCE: f64 = 2.6;
+/// The bunny OBJ, embedded so the workload needs no data path at run time.
+pub const BUNNY_OBJ: &str = include_str!("../data/bunny.obj");
+
+/// Which workload.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shading {
+    /// W1: one colour per triangle from the face normal.
+    Flat,
+    /// W2: per-vertex intensities from vertex normals, interpolated.
+    Gouraud,
+}
+
+/// The workload's grey: `v = floor(255·I)`, RGB565 `(v>>3, v>>2, v>>3)`.
+#[must_use]
+pub fn grey565(v: u8) -> Rgb565 {
+    Rgb565::new(v >> 3, v >> 2, v >> 3)
+}
+
+/// The bunny, normalised, with face and vertex normals (computed in f64
+/// and converted once).
+#[derive(Clone, Debug)]
+pub struct Model<S> {
+    /// Normalised positions.
+    pub positions: Vec<Vec3<S>>,
+    /// Triangles (CCW outward).
+    pub triangles: Vec<[u32; 3]>,
+    /// Unit face normals.
+    pub face_normals: Vec<Vec3<S>>,
+    /// Unit vertex normals (area-weighted).
+    pub vertex_normals: Vec<Vec3<S>>,
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+fn normalise(a: [f64; 3]) -> [f64; 3] {
+    let l = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+    if l > 0.0 {
+        [a[0] / l, a[1] / l, a[2] / l]
+    } else {
+        [0.0; 3]
+    }
+}
+
+impl<S: Scalar> Model<S> {
+    /// Normalises `mesh` as W1/W2 define and computes the normals.
+    #[must_use]
+    pub fn from_mesh(mesh: &Mesh) -> Self {
+        let p: Vec<[f64; 3]> = mesh
+            .positions
+            .iter()
+            .map(|&q| {
+                let d = sub(q, CENTRE);
+                [d[0] / SCALE, d[1] / SCALE, d[2] / SCALE]
+            })
+            .collect();
+        let mut vn = vec![[0.0f64; 3]; p.len()];
+        let mut face_normals = Vec::with_capacity(mesh.triangles.len());
+        for t in &mesh.triangles {
+            let [a, b, c] = t.map(|i| p[i as usize]);
+            // |cross| is twice the area: summing it weights by area.
+            let n = cross(sub(b, a), sub(c, a));
+            face_normals.push(v3(normalise(n)));
+            for &i in t {
+                let s = &mut vn[i as usize];
+                for k in 0..3 {
+                    s[k] += n[k];
+                }
+            }
+        }
+        Self {
+            positions: p.into_iter().map(v3).collect(),
+            triangles: mesh.triangles.clone(),
+            face_normals,
+            vertex_normals: vn.into_iter().map(|n| v3(normalise(n))).collect(),
+        }
+    }
+
+    /// The bunny from the embedded OBJ.
+    ///
+    /// # Panics
+    /// If the embedded file does not parse (a build error, tested).
+    #[must_use]
+    pub fn bunny() -> Self {
+        Self::from_mesh(&obj::parse(BUNNY_OBJ).expect("embedded bunny.obj parses"))
+    }
+}
+
+fn v3<S: Scalar>(a: [f64; 3]) -> Vec3<S> {
+    Vec3::new(S::from_f64(a[0]), S::from_f64(a[1]), S::from_f64(a[2]))
+}
+
+/// Everything a frame needs besides the buffers: the model, the pipeline,
+/// the camera and per-frame scratch (no allocation per frame).
+#[derive(Debug)]
+pub struct Workload<S> {
+    model: Model<S>,
+    shading: Shading,
+    pipeline: Pipeline<S>,
+    camera: Camera<S>,
+    ramp: [Rgb565; 256],
+    flat: Vec<Vertex<S, ()>>,
+    lit: Vec<Vertex<S, Intensity<S>>>,
+    flat_proj: Vec<MeshVertex<0>>,
+    lit_proj: Vec<MeshVertex<1>>,
+}
+
+/// The colour and depth buffers of one 320×240 frame.
+#[derive(Clone, Debug)]
+pub struct Frame {
+    /// RGB565 pixels, row-major.
+    pub color: Vec<Rgb565>,
+    /// Depth keys, row-major.
+    pub depth: Vec<u16>,
+}
+
+impl Default for Frame {
+    fn default() -> Self {
+        let n = WIDTH as usize * HEIGHT as usize;
+        Self {
+            color: vec![grey565(0); n],
+            depth: vec![u16::MAX; n],
+        }
+    }
+}
+
+impl<S: Scalar> Workload<S> {
+    /// Sets up W1 or W2 for `model`.
+    ///
+    /// # Panics
+    /// Never for the constants used here (the pipeline parameters are
+    /// valid).
+    #[must_use]
+    pub fn new(model: Model<S>, shading: Shading) -> Self {
+        let s = S::from_f64;
+        let projection = Projection::perspective(s(FOCUS), WIDTH, HEIGHT);
+        // Near 0.5 and far 10 as glFrustum(−0.4, 0.4, −0.3, 0.3, 0.5, 10).
+        let pipeline = Pipeline::new(projection, WIDTH, HEIGHT, s(0.5), s(10.0), s(16.0))
+            .expect("valid pipeline")
+            .with_cull(Cull::Back);
+        // At the origin, zero angles: looks along world −Z with +Y up,
+        // i.e. the workload's eye space, flipped to view axes.
+        let camera = Camera::from_angles(Vec3::ZERO, Euler::ZERO);
+        let ramp = core::array::from_fn(|i| grey565(i as u8));
+        let n = model.positions.len();
+        Self {
+            model,
+            shading,
+            pipeline,
+            camera,
+            ramp,
+            flat: vec![Vertex::new(Vec3::ZERO, ()); n],
+            lit: vec![Vertex::new(Vec3::ZERO, Intensity(S::ZERO)); n],
+            flat_proj: vec![MeshVertex::default(); n],
+            lit_proj: vec![MeshVertex::default(); n],
+        }
+    }
+
+    /// The object pose of frame `k` of `n`: yaw 2πk/n at (0, 0, −2.6).
+    #[must_use]
+    pub fn pose(k: u32, n: u32) -> Pose<S> {
+        let yaw = 2.0 * core::f64::consts::PI * k as f64 / n.max(1) as f64;
+        Pose::new(
+            Vec3::new(S::ZERO, S::ZERO, S::from_f64(-DISTANCE)),
+            Euler::new(S::ZERO, S::ZERO, S::from_f64(yaw)),
+        )
+    }
+
+    /// Renders frame `k` of `n` into `frame`, clearing it first. Returns
+    /// the number of triangles drawn (not culled, not empty).
+    pub fn render(&mut self, k: u32, n: u32, frame: &mut Frame) -> u32 {
+        let (w, h) = (WIDTH, HEIGHT);
+        let Ok(mut fb) = Framebuffer::new(&mut frame.color, w, h, w as usize) else {
+            return 0;
+        };
+        let Ok(mut depth) = DepthBuffer::new(&mut frame.depth, w, h, w as usize, 0) else {
+            return 0;
+        };
+        fb.clear(grey565(0));
+        depth.clear();
+
+        let m = self.camera.object_to_view(&Self::pose(k, n));
+        // L = (1, 1, 1)/√3 towards the light in eye space is (1, −1, −1)/√3
+        // in view space; dot products are the same in object space with
+        // L_obj = Rᵀ·L_view (R is a rotation), so normals stay untouched.
+        let k3 = S::from_f64(1.0 / 3f64.sqrt());
+        let l_view = Vec3::new(k3, -k3, -k3);
+        let l = m.matrix.transpose().mul_vec3(l_view);
+        let (ambient, diffuse) = (S::from_f64(0.2), S::from_f64(0.8));
+        let shade = |n: Vec3<S>| ambient + diffuse * n.dot(l).max_of(S::ZERO);
+
+        let model = &self.model;
+        let pipe = &self.pipeline;
+        let mut drawn = 0;
+        match self.shading {
+            Shading::Flat => {
+                for (v, &p) in self.flat.iter_mut().zip(&model.positions) {
+                    v.pos = m.transform_point3(p);
+                }
+                pipe.project_vertices(&self.flat, &mut self.flat_proj);
+                for (&t, &fnorm) in model.triangles.iter().zip(&model.face_normals) {
+                    let Ok(Some(tri)) = pipe.mesh_triangle(&self.flat, &self.flat_proj, t) else {
+                        continue;
+                    };
+                    let c = intensity_byte(shade(fnorm));
+                    let sh = Flat(grey565(c));
+                    if fill_polygon(&mut fb, &mut depth, &sh, tri.as_slice()) == FillOutcome::Drawn
+                    {
+                        drawn += 1;
+                    }
+                }
+            }
+            Shading::Gouraud => {
+                for ((v, &p), &nv) in self
+                    .lit
+                    .iter_mut()
+                    .zip(&model.positions)
+                    .zip(&model.vertex_normals)
+                {
+                    *v = Vertex::new(m.transform_point3(p), Intensity(shade(nv)));
+                }
+                pipe.project_vertices(&self.lit, &mut self.lit_proj);
+                let sh = Gouraud::new(&self.ramp);
+                for &t in &model.triangles {
+                    let Ok(Some(tri)) = pipe.mesh_triangle(&self.lit, &self.lit_proj, t) else {
+                        continue;
+                    };
+                    if fill_polygon(&mut fb, &mut depth, &sh, tri.as_slice()) == FillOutcome::Drawn
+                    {
+                        drawn += 1;
+                    }
+                }
+            }
+        }
+        drawn
+    }
+}
+
+/// `floor(255·I)` for I in [0, 1].
+fn intensity_byte<S: Scalar>(i: S) -> u8 {
+    (i.to_f32() * 255.0).clamp(0.0, 255.0) as u8
+}
+
+/// Pixels covered in a rendered frame and their bounding box.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Coverage {
+    /// Non-background pixels (every lit pixel has v ≥ 51, so none is 0).
+    pub pixels: u32,
+    /// `(x_min, y_min, x_max, y_max)`, inclusive, or `None` if empty.
+    pub bbox: Option<(u16, u16, u16, u16)>,
+}
+
+impl Frame {
+    /// The covered pixels of the last rendered frame.
+    #[must_use]
+    pub fn coverage(&self) -> Coverage {
+        let bg = grey565(0);
+        let mut pixels = 0;
+        let mut bbox: Option<(u16, u16, u16, u16)> = None;
+        for (i, &c) in self.color.iter().enumerate() {
+            if c != bg {
+                pixels += 1;
+                let (x, y) = ((i % WIDTH as usize) as u16, (i / WIDTH as usize) as u16);
+                bbox = Some(match bbox {
+                    None => (x, y, x, y),
+                    Some((a, b, c, d)) => (a.min(x), b.min(y), c.max(x), d.max(y)),
+                });
+            }
+        }
+        Coverage { pixels, bbox }
+    }
+}

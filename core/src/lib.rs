@@ -19,6 +19,7 @@
 //! | [`raster`] | integer scan conversion of convex polygons (28.4 sub-pixel, top-left rule) into spans; span shaders (flat, Gouraud, affine and perspective-correct textures, exact or subdivided); optional depth buffer |
 //! | [`target`] | span sinks: slice framebuffer with stride, bands for strip rendering, embedded-graphics `DrawTarget` adapter |
 //! | [`ray`] | screen→world: rays from a ray-casting camera, planes, polygons with four inclusion tests, spheres, watertight triangles, nearest hit, bounding boxes and a uniform grid |
+//! | [`scene`] | one borrowed scene description (meshes, poses, materials, light, camera) rendered by both paths with one material model; built-in demo scenes as static data |
 //!
 //! ## Coordinate conventions
 //!
@@ -64,6 +65,7 @@ pub mod pipeline;
 pub mod raster;
 pub mod ray;
 pub mod scalar;
+pub mod scene;
 pub mod solve;
 pub mod target;
 pub mod transform;

@@ -510,3 +510,6 @@ impl Scene<'_> {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests;

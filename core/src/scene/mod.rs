@@ -31,11 +31,14 @@
 //!   the same quantised vertices with the same code on both paths, so both
 //!   paths give bit-identical colours for a triangle.
 //! - [`Material::Gouraud`]: `I` is evaluated at the vertices (vertex
-//!   normals, or the face normal when the mesh has none) and interpolated:
-//!   linearly in screen space by the raster path, with the hit's
-//!   barycentric weights by the ray path.
+//!   normals, or the face normal when the mesh has none) and interpolated
+//!   linearly in screen space. The ray path finds the triangle by casting,
+//!   then evaluates the raster path's 16.16 intensity plane over the
+//!   triangle's projected 28.4 vertices at the pixel centre (falling back
+//!   to the hit's barycentric weights if a vertex cannot be projected).
 //! - [`Material::Texture`]: unlit nearest-texel sampling, repeating a
-//!   power-of-two texture. The ray path is always perspective-correct;
+//!   power-of-two texture. The ray path is always perspective-correct
+//!   (the raster path's exact `u·q / q` planes, evaluated the same way);
 //!   the raster path follows [`TextureMode`].
 //! - Spheres ([`SceneSphere`]) are drawn by the ray path only, lit per hit
 //!   with the sphere normal.

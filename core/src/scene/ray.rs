@@ -5,7 +5,7 @@
 use super::shade::{self, Lighting};
 use super::{Color, Material, Scene, SceneError, View, vec3};
 use crate::math::{Affine3, Mat3, Vec3};
-use crate::raster::Shade;
+use crate::raster::{PERSPECTIVE_Q_BITS, SUBPIXEL_BITS, Shade, VARYING_FRAC_BITS};
 use crate::ray::{Aabb, Ray, RayCamera, ShearedRay, Sphere, Triangle};
 use crate::scalar::Scalar;
 use crate::target::Target;
@@ -17,6 +17,8 @@ pub const MAX_RAY_OBJECTS: usize = 32;
 #[derive(Clone, Copy, Debug)]
 struct RayObject<S> {
     to_object: Affine3<S>,
+    /// The raster path's object→view transform, for screen-space Gouraud.
+    to_view: Affine3<S>,
     rot: Mat3<S>,
     scale: S,
     bounds: Option<Aabb<S>>,
@@ -29,6 +31,7 @@ struct RayObject<S> {
 pub struct RayScene<'a, S> {
     scene: Scene<'a>,
     camera: RayCamera<S>,
+    projection: crate::camera::Projection<S>,
     inv_focus: S,
     objects: heapless::Vec<RayObject<S>, MAX_RAY_OBJECTS>,
     spheres: heapless::Vec<Sphere<S>, MAX_RAY_OBJECTS>,
@@ -80,6 +83,7 @@ impl<'a, S: Scalar> RayScene<'a, S> {
             objects
                 .push(RayObject {
                     to_object,
+                    to_view: view.camera.object_to_view(&pose),
                     rot: pose.angles.to_mat3(),
                     scale,
                     bounds,
@@ -95,6 +99,7 @@ impl<'a, S: Scalar> RayScene<'a, S> {
         Ok(Self {
             scene: *scene,
             camera,
+            projection: view.projection,
             inv_focus: S::ONE / focus,
             objects,
             spheres,
@@ -128,7 +133,7 @@ impl<'a, S: Scalar> RayScene<'a, S> {
     #[must_use]
     pub fn pixel(&self, i: u16, j: u16) -> Color {
         match self.pixel_ray(i, j) {
-            Some(ray) => self.trace(&ray),
+            Some(ray) => self.trace_at(&ray, Some((i, j))),
             None => self.scene.background,
         }
     }
@@ -164,6 +169,10 @@ impl<'a, S: Scalar> RayScene<'a, S> {
     /// Shades the nearest hit of `ray`, or the background.
     #[must_use]
     pub fn trace(&self, ray: &Ray<S>) -> Color {
+        self.trace_at(ray, None)
+    }
+
+    fn trace_at(&self, ray: &Ray<S>, pixel: Option<(u16, u16)>) -> Color {
         let mut best_t: Option<S> = None;
         let mut best: Option<HitKind<S>> = None;
         for (o, (obj, desc)) in self.objects.iter().zip(self.scene.objects).enumerate() {
@@ -222,11 +231,19 @@ impl<'a, S: Scalar> RayScene<'a, S> {
                 let q = shade::quantise_intensity(self.light.intensity(s.normal_at(point)));
                 desc.color.scale(q)
             }
-            Some(HitKind::Triangle { object, tri, w }) => self.shade_triangle(object, tri, w),
+            Some(HitKind::Triangle { object, tri, w }) => {
+                self.shade_triangle(object, tri, w, pixel)
+            }
         }
     }
 
-    fn shade_triangle(&self, object: usize, tri: usize, w: [S; 3]) -> Color {
+    fn shade_triangle(
+        &self,
+        object: usize,
+        tri: usize,
+        w: [S; 3],
+        pixel: Option<(u16, u16)>,
+    ) -> Color {
         let (Some(obj), Some(desc)) = (self.objects.get(object), self.scene.objects.get(object))
         else {
             return self.scene.background;
@@ -243,17 +260,121 @@ impl<'a, S: Scalar> RayScene<'a, S> {
             }
             Material::Gouraud(color) => {
                 let i = shade::vertex_intensities(mesh, &obj.rot, &self.light, t);
-                let v = i[0] * w[0] + i[1] * w[1] + i[2] * w[2];
-                color.scale(shade::quantise_intensity(v))
+                let screen = pixel.and_then(|(px, py)| {
+                    let p = t.map(|k| {
+                        let v = obj
+                            .to_view
+                            .transform_point3(shade::position(mesh, obj.scale, k));
+                        self.projection.project(v).and_then(|(s, _)| {
+                            Some((
+                                s.x.to_subpixel(SUBPIXEL_BITS)?,
+                                s.y.to_subpixel(SUBPIXEL_BITS)?,
+                            ))
+                        })
+                    });
+                    let c = (px as i32 * 16 + 8, py as i32 * 16 + 8);
+                    screen_lerp([p[0]?, p[1]?, p[2]?], c, i.map(shade::intensity_varying))
+                });
+                match screen {
+                    Some(v) => color.scale((v >> VARYING_FRAC_BITS).clamp(0, 255) as u8),
+                    None => {
+                        let v = i[0] * w[0] + i[1] * w[1] + i[2] * w[2];
+                        color.scale(shade::quantise_intensity(v))
+                    }
+                }
             }
             Material::Texture { texture, .. } => {
                 let uv = t.map(|k| shade::uv::<S>(mesh, k));
+                if let Some(c) =
+                    pixel.and_then(|(px, py)| self.perspective_uv(obj, mesh, t, uv, px, py))
+                {
+                    return texture.sample(c.0, c.1);
+                }
                 let u = uv[0].0 * w[0] + uv[1].0 * w[1] + uv[2].0 * w[2];
                 let v = uv[0].1 * w[0] + uv[1].1 * w[1] + uv[2].1 * w[2];
                 texture.sample(shade::texel(u), shade::texel(v))
             }
         }
     }
+}
+
+impl<S: Scalar> RayScene<'_, S> {
+    /// The texel the raster path's exact perspective mapping reads at
+    /// pixel (px, py): the planes of `u·q`, `v·q` (16.16) and `q = near/z`
+    /// (8.24) over the 28.4 vertices, divided, floored.
+    fn perspective_uv(
+        &self,
+        obj: &RayObject<S>,
+        mesh: &super::MeshData<'_>,
+        t: [u16; 3],
+        uv: [(S, S); 3],
+        px: u16,
+        py: u16,
+    ) -> Option<(i32, i32)> {
+        let inv_near = S::ONE.checked_div(S::from_f32(self.scene.near))?;
+        let mut p = [(0, 0); 3];
+        let mut vs = [[0i32; 3]; 3];
+        for c in 0..3 {
+            let v = obj
+                .to_view
+                .transform_point3(shade::position(mesh, obj.scale, t[c]));
+            let (s, depth) = self.projection.project(v)?;
+            p[c] = (
+                s.x.to_subpixel(SUBPIXEL_BITS)?,
+                s.y.to_subpixel(SUBPIXEL_BITS)?,
+            );
+            let q = (depth / inv_near).clamp_to(S::ZERO, S::ONE);
+            let qv = q.to_subpixel(PERSPECTIVE_Q_BITS).unwrap_or(1).max(1);
+            vs[0][c] = shade::texel_varying(uv[c].0 * q);
+            vs[1][c] = shade::texel_varying(uv[c].1 * q);
+            vs[2][c] = qv;
+        }
+        let range = (-(1 << 29), (1 << 29) - 1);
+        let centre = (px as i32 * 16 + 8, py as i32 * 16 + 8);
+        let uq = screen_lerp_in(p, centre, vs[0], range)? as i64;
+        let vq = screen_lerp_in(p, centre, vs[1], range)? as i64;
+        let q = (screen_lerp_in(p, centre, vs[2], range)? as i64).max(1);
+        let u = (uq << PERSPECTIVE_Q_BITS) / q;
+        let v = (vq << PERSPECTIVE_Q_BITS) / q;
+        let texel =
+            |x: i64| (x >> VARYING_FRAC_BITS).clamp(i32::MIN as i64, i32::MAX as i64) as i32;
+        Some((texel(u), texel(v)))
+    }
+}
+
+/// The value at 28.4 point `c` of the plane through values `a` at the
+/// 28.4 vertices `p` (linear in screen space, as the raster path's
+/// Gouraud varyings); `None` for a zero-area triangle.
+fn screen_lerp(p: [(i32, i32); 3], c: (i32, i32), a: [i32; 3]) -> Option<i32> {
+    screen_lerp_in(p, c, a, (0, (256 << VARYING_FRAC_BITS) - 1))
+}
+
+fn screen_lerp_in(
+    p: [(i32, i32); 3],
+    c: (i32, i32),
+    a: [i32; 3],
+    (lo, hi): (i32, i32),
+) -> Option<i32> {
+    let (x0, y0) = (p[0].0 as i128, p[0].1 as i128);
+    let e1 = (p[1].0 as i128 - x0, p[1].1 as i128 - y0);
+    let e2 = (p[2].0 as i128 - x0, p[2].1 as i128 - y0);
+    let area = e1.0 * e2.1 - e1.1 * e2.0;
+    if area == 0 {
+        return None;
+    }
+    let da1 = a[1] as i128 - a[0] as i128;
+    let da2 = a[2] as i128 - a[0] as i128;
+    let nx = da1 * e2.1 - da2 * e1.1;
+    let ny = da2 * e1.0 - da1 * e2.0;
+    let num = nx * (c.0 as i128 - x0) + ny * (c.1 as i128 - y0);
+    // Round to nearest, as the raster path's gradients do.
+    let d = if (num < 0) == (area < 0) {
+        (num + area / 2) / area
+    } else {
+        (num - area / 2) / area
+    };
+    let v = a[0] as i128 + d;
+    Some(v.clamp(lo as i128, hi as i128) as i32)
 }
 
 /// The object-space box around the positions, one step wider on every

@@ -17,6 +17,25 @@ pub fn quantise_intensity<S: Scalar>(i: S) -> u8 {
     (v >> 16).clamp(0, 255) as u8
 }
 
+/// Intensity `[0, 1]` → the raster path's Gouraud varying: 0..=255 in
+/// 16.16 (as `pipeline::Intensity` converts it).
+pub(crate) fn intensity_varying<S: Scalar>(i: S) -> i32 {
+    (i.clamp_to(S::ZERO, S::ONE) * S::from_i32(255))
+        .to_subpixel(16)
+        .unwrap_or(0)
+}
+
+/// Texels → 16.16 saturated to ±2^29, as `pipeline::Uv` converts them.
+pub(crate) fn texel_varying<S: Scalar>(u: S) -> i32 {
+    let lim = 1 << 29;
+    match u.to_subpixel(16) {
+        Some(v) => v.clamp(-lim, lim - 1),
+        None if u > S::ZERO => lim - 1,
+        None if u < S::ZERO => -lim,
+        None => 0,
+    }
+}
+
 /// The light in scalar `S`.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Lighting<S> {

@@ -171,3 +171,33 @@ fn singular_general_camera_and_parallel_ray_are_errors() {
         Err(SceneError::RayCamera(_))
     ));
 }
+
+#[test]
+fn strip_rendering_with_bands_equals_the_whole_frame() {
+    use crate::target::Band;
+    let (w, h, rows) = (48u16, 36u16, 8u16);
+    for scene in [&builtin::BUNNY, &builtin::CORRIDOR] {
+        let whole = raster_image::<f32>(scene, w, h);
+        let view = scene.view::<f32>(w, h).unwrap();
+        let mut strip = vec![Color::new(0, 0, 0); w as usize * rows as usize];
+        let mut keys = vec![u16::MAX; strip.len()];
+        let mut y0 = 0;
+        while y0 < h as i32 {
+            keys.fill(u16::MAX);
+            let mut band = Band::new(&mut strip, w, rows, w as usize, y0).unwrap();
+            let mut depth = DepthBuffer::new(&mut keys, w, rows, w as usize, y0).unwrap();
+            render_raster(scene, &view, &mut band, &mut depth).unwrap();
+            for y in y0..(y0 + rows as i32).min(h as i32) {
+                for x in 0..w as i32 {
+                    assert_eq!(
+                        band.pixel(x, y),
+                        Some(whole[y as usize * w as usize + x as usize]),
+                        "{} ({x}, {y})",
+                        scene.name
+                    );
+                }
+            }
+            y0 += rows as i32;
+        }
+    }
+}

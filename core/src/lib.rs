@@ -20,6 +20,7 @@
 //! | [`texture`] | texture-mapping vectors (axis-edge fast path, any polygon via [`solve`]), the per-pixel perspective mapping, and the affine/perspective choice from a distortion bound |
 //! | [`target`] | span sinks: slice framebuffer with stride, bands for strip rendering, embedded-graphics `DrawTarget` adapter |
 //! | [`ray`] | screen→world: rays from a ray-casting camera, planes, polygons with four inclusion tests, spheres, watertight triangles, nearest hit, bounding boxes and a uniform grid |
+//! | [`scene`] | one borrowed scene description (meshes, poses, materials, light, camera) rendered by both paths with one material model; built-in demo scenes as static data |
 //!
 //! ## Coordinate conventions
 //!
@@ -65,6 +66,7 @@ pub mod pipeline;
 pub mod raster;
 pub mod ray;
 pub mod scalar;
+pub mod scene;
 pub mod solve;
 pub mod target;
 pub mod texture;

@@ -1,0 +1,180 @@
+//! The material model shared by both paths (see the module docs): the
+//! same functions, on the same quantised inputs, so flat-shaded triangles
+//! get bit-identical colours from the raster and the ray path.
+
+use super::{Light, MeshData, vec3};
+use crate::math::{Mat3, Vec3};
+use crate::scalar::Scalar;
+use crate::transform::{Euler, Pose};
+
+/// `I` (any real) → `⌊255·clamp(I, 0, 1)⌋` as the raster path's intensity
+/// varying does it: 255·I in 16.16 fixed point, then the integer part.
+#[must_use]
+pub fn quantise_intensity<S: Scalar>(i: S) -> u8 {
+    let v = (i.clamp_to(S::ZERO, S::ONE) * S::from_i32(255))
+        .to_subpixel(16)
+        .unwrap_or(0);
+    (v >> 16).clamp(0, 255) as u8
+}
+
+/// Intensity `[0, 1]` → the raster path's Gouraud varying: 0..=255 in
+/// 16.16 (as `pipeline::Intensity` converts it).
+pub(crate) fn intensity_varying<S: Scalar>(i: S) -> i32 {
+    (i.clamp_to(S::ZERO, S::ONE) * S::from_i32(255))
+        .to_subpixel(16)
+        .unwrap_or(0)
+}
+
+/// Texels → 16.16 saturated to ±2^29, as `pipeline::Uv` converts them.
+pub(crate) fn texel_varying<S: Scalar>(u: S) -> i32 {
+    let lim = 1 << 29;
+    match u.to_subpixel(16) {
+        Some(v) => v.clamp(-lim, lim - 1),
+        None if u > S::ZERO => lim - 1,
+        None if u < S::ZERO => -lim,
+        None => 0,
+    }
+}
+
+/// The light in scalar `S`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Lighting<S> {
+    dir: Vec3<S>,
+    ambient: S,
+    diffuse: S,
+}
+
+impl<S: Scalar> Lighting<S> {
+    pub(crate) fn new(light: &Light) -> Self {
+        Self {
+            dir: vec3::<S>(light.direction)
+                .try_normalize()
+                .unwrap_or(Vec3::ZERO),
+            ambient: S::from_f32(light.ambient),
+            diffuse: S::from_f32(light.diffuse),
+        }
+    }
+
+    /// `ambient + diffuse·max(0, n·L)` for a world-space unit normal.
+    pub(crate) fn intensity(&self, n: Vec3<S>) -> S {
+        self.ambient + self.diffuse * n.dot(self.dir).max_of(S::ZERO)
+    }
+}
+
+/// A pose in scalar `S`.
+pub(crate) fn pose<S: Scalar>(p: &Pose<f32>) -> Pose<S> {
+    Pose::new(
+        Vec3::new(
+            S::from_f32(p.origin.x),
+            S::from_f32(p.origin.y),
+            S::from_f32(p.origin.z),
+        ),
+        Euler::new(
+            S::from_f32(p.angles.roll),
+            S::from_f32(p.angles.pitch),
+            S::from_f32(p.angles.yaw),
+        ),
+    )
+}
+
+/// Object-space position of vertex `k` (zero if out of range; validated
+/// scenes never are).
+#[inline]
+pub(crate) fn position<S: Scalar>(mesh: &MeshData<'_>, scale: S, k: u16) -> Vec3<S> {
+    let p = mesh.positions.get(k as usize).copied().unwrap_or([0; 3]);
+    Vec3::new(
+        S::from_i32(p[0] as i32) * scale,
+        S::from_i32(p[1] as i32) * scale,
+        S::from_i32(p[2] as i32) * scale,
+    )
+}
+
+/// 1/16384, the unit of [`face_normal`]'s integer direction.
+const INV_2_14: f32 = 1.0 / 16384.0;
+
+/// The world-space unit face normal of triangle `tri` under rotation
+/// `rot`. The cross product is taken exactly in integers on the quantised
+/// positions, then scaled so its largest component is ±2^14: the result
+/// does not depend on the scalar type's range (I16F16 would lose small
+/// triangles' normals to underflow otherwise). `None` for a degenerate
+/// triangle.
+pub(crate) fn face_normal<S: Scalar>(
+    mesh: &MeshData<'_>,
+    rot: &Mat3<S>,
+    tri: [u16; 3],
+) -> Option<Vec3<S>> {
+    let p = |k: u16| {
+        let v = mesh.positions.get(k as usize).copied().unwrap_or([0; 3]);
+        [v[0] as i64, v[1] as i64, v[2] as i64]
+    };
+    let (a, b, c) = (p(tri[0]), p(tri[1]), p(tri[2]));
+    let e1 = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let e2 = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+    let n = [
+        e1[1] * e2[2] - e1[2] * e2[1],
+        e1[2] * e2[0] - e1[0] * e2[2],
+        e1[0] * e2[1] - e1[1] * e2[0],
+    ];
+    let m = n.iter().map(|v| v.abs()).max().unwrap_or(0);
+    if m == 0 {
+        return None;
+    }
+    // A negative scale flips the winding.
+    let sign = if mesh.scale < 0.0 { -1 } else { 1 };
+    let unit = S::from_f32(INV_2_14);
+    let c = |v: i64| S::from_i32((sign * (v << 14) / m) as i32) * unit;
+    rot.mul_vec3(Vec3::new(c(n[0]), c(n[1]), c(n[2])))
+        .try_normalize()
+}
+
+/// The world-space unit normal at vertex `k`: the mesh's vertex normal if
+/// it has them, else `face`.
+pub(crate) fn vertex_normal<S: Scalar>(
+    mesh: &MeshData<'_>,
+    rot: &Mat3<S>,
+    k: u16,
+    face: Option<Vec3<S>>,
+) -> Option<Vec3<S>> {
+    match mesh.normals.and_then(|n| n.get(k as usize)) {
+        Some(n) => {
+            let unit = S::from_f32(1.0 / 32767.0);
+            let v = Vec3::new(
+                S::from_i32(n[0] as i32) * unit,
+                S::from_i32(n[1] as i32) * unit,
+                S::from_i32(n[2] as i32) * unit,
+            );
+            rot.mul_vec3(v).try_normalize()
+        }
+        None => face,
+    }
+}
+
+/// The intensities at the three vertices of a Gouraud triangle.
+pub(crate) fn vertex_intensities<S: Scalar>(
+    mesh: &MeshData<'_>,
+    rot: &Mat3<S>,
+    light: &Lighting<S>,
+    tri: [u16; 3],
+) -> [S; 3] {
+    let face = face_normal(mesh, rot, tri);
+    tri.map(|k| vertex_normal(mesh, rot, k, face).map_or(S::ZERO, |n| light.intensity(n)))
+}
+
+/// The texture coordinates of vertex `k` in texels.
+pub(crate) fn uv<S: Scalar>(mesh: &MeshData<'_>, k: u16) -> (S, S) {
+    let t = mesh
+        .uvs
+        .and_then(|u| u.get(k as usize))
+        .copied()
+        .unwrap_or([0; 2]);
+    (S::from_i32(t[0] as i32), S::from_i32(t[1] as i32))
+}
+
+/// A texel coordinate → integer texel, as the raster path's varyings do
+/// it (16.16, then the integer part, i.e. floor).
+pub(crate) fn texel<S: Scalar>(u: S) -> i32 {
+    match u.to_subpixel(16) {
+        Some(v) => v >> 16,
+        None => 0,
+    }
+}

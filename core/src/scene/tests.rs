@@ -1,0 +1,203 @@
+use super::builtin::{self, CUBE, CUBE_MESH};
+use super::*;
+use crate::raster::{DepthBuffer, Shade};
+use crate::scalar::I16F16;
+use crate::target::Framebuffer;
+use embedded_graphics::pixelcolor::IntoStorage;
+use std::vec;
+
+fn raster_image<S: Scalar>(scene: &Scene<'_>, w: u16, h: u16) -> std::vec::Vec<Color> {
+    let mut px = vec![Color::new(0, 0, 0); w as usize * h as usize];
+    let mut keys = vec![u16::MAX; px.len()];
+    let mut fb = Framebuffer::new(&mut px, w, h, w as usize).unwrap();
+    let mut depth = DepthBuffer::new(&mut keys, w, h, w as usize, 0).unwrap();
+    let view = scene.view::<S>(w, h).unwrap();
+    let stats = render_raster(scene, &view, &mut fb, &mut depth).unwrap();
+    assert_eq!(stats.errors, 0);
+    px
+}
+
+fn ray_image<S: Scalar>(scene: &Scene<'_>, w: u16, h: u16) -> std::vec::Vec<Color> {
+    let view = scene.view::<S>(w, h).unwrap();
+    let rs = RayScene::new(scene, &view).unwrap();
+    let mut px = vec![Color::new(0, 0, 0); w as usize * h as usize];
+    for (j, row) in px.chunks_mut(w as usize).enumerate() {
+        rs.render_row(j as u16, row);
+    }
+    px
+}
+
+#[test]
+fn builtin_scenes_validate() {
+    for s in builtin::ALL {
+        s.validate().unwrap();
+        assert_eq!(builtin::by_name(s.name).map(|f| f.name), Some(s.name));
+    }
+    assert_eq!(
+        builtin::COLUMN_MAP.cells.len(),
+        builtin::COLUMN_MAP.width as usize * builtin::COLUMN_MAP.height as usize
+    );
+}
+
+#[test]
+fn quantise_matches_floor_of_255_i() {
+    assert_eq!(quantise_intensity(0.0f32), 0);
+    assert_eq!(quantise_intensity(1.0f32), 255);
+    assert_eq!(quantise_intensity(2.0f32), 255);
+    assert_eq!(quantise_intensity(-1.0f32), 0);
+    assert_eq!(quantise_intensity(0.5f32), 127);
+    assert_eq!(quantise_intensity(I16F16::from_f32(0.5)), 127);
+}
+
+#[test]
+fn flat_cube_agrees_between_paths_in_f32_and_fixed() {
+    fn check<S: Scalar>() {
+        let a = raster_image::<S>(&CUBE, 64, 48);
+        let b = ray_image::<S>(&CUBE, 64, 48);
+        let equal = a.iter().zip(&b).filter(|(p, q)| p == q).count();
+        assert!(equal * 100 >= a.len() * 99, "{equal} of {}", a.len());
+        // The cube's faces are lit differently: several colours appear.
+        let mut colours: std::vec::Vec<_> = a.iter().map(|c| c.into_storage()).collect();
+        colours.sort_unstable();
+        colours.dedup();
+        assert!(colours.len() >= 4, "{colours:?}");
+    }
+    check::<f32>();
+    check::<I16F16>();
+}
+
+#[test]
+fn flat_colour_is_base_scaled_by_quantised_intensity() {
+    // Looking straight down at the top face of an unrotated cube: n = +Y.
+    let objects = [SceneObject {
+        mesh: &CUBE_MESH,
+        pose: Pose::default(),
+        material: Material::Flat(Color::new(31, 63, 31)),
+    }];
+    let scene = Scene {
+        camera: CameraSpec::LookAt {
+            eye: [0.0, 5.0, 0.0],
+            target: [0.0, 0.0, 0.0],
+            up: [0.0, 0.0, -1.0],
+        },
+        light: Light {
+            direction: [0.0, 1.0, 0.0],
+            ambient: 0.1,
+            diffuse: 0.4,
+        },
+        objects: &objects,
+        spheres: &[],
+        ..CUBE
+    };
+    let want = Color::new(31, 63, 31).scale(quantise_intensity(0.5f32));
+    assert_eq!(raster_image::<f32>(&scene, 8, 8)[4 * 8 + 4], want);
+    assert_eq!(ray_image::<f32>(&scene, 8, 8)[4 * 8 + 4], want);
+}
+
+#[test]
+fn validate_reports_bad_meshes_and_textures() {
+    let bad = MeshData {
+        triangles: &[[0, 1, 8]],
+        ..CUBE_MESH
+    };
+    let objects = [SceneObject {
+        mesh: &bad,
+        pose: Pose::default(),
+        material: Material::Flat(Color::new(1, 1, 1)),
+    }];
+    let scene = Scene {
+        objects: &objects,
+        ..CUBE
+    };
+    assert_eq!(
+        scene.validate(),
+        Err(SceneError::IndexOutOfRange {
+            object: 0,
+            triangle: 0
+        })
+    );
+    let texels = [Color::new(0, 0, 0); 12];
+    assert_eq!(
+        TextureData::new(&texels, 4, 3).err(),
+        Some(SceneError::TextureNotPowerOfTwo {
+            width: 4,
+            height: 3
+        })
+    );
+    assert_eq!(
+        TextureData::new(&texels, 4, 4).err(),
+        Some(SceneError::TextureSize)
+    );
+    let tex = TextureData::new(&texels[..8], 4, 2).unwrap();
+    let objects = [SceneObject {
+        mesh: &CUBE_MESH,
+        pose: Pose::default(),
+        material: Material::Texture {
+            texture: tex,
+            mode: TextureMode::Auto,
+        },
+    }];
+    let scene = Scene {
+        objects: &objects,
+        ..CUBE
+    };
+    assert_eq!(scene.validate(), Err(SceneError::MissingUv { object: 0 }));
+}
+
+#[test]
+fn singular_general_camera_and_parallel_ray_are_errors() {
+    let scene = Scene {
+        camera: CameraSpec::Vectors {
+            position: [0.0; 3],
+            u: [1.0, 0.0, 0.0],
+            v: [2.0, 0.0, 0.0],
+            w: [0.0, 0.0, 1.0],
+        },
+        ..CUBE
+    };
+    assert!(matches!(
+        scene.view::<f32>(8, 8),
+        Err(SceneError::Camera(crate::camera::CameraError::Degenerate(
+            _
+        )))
+    ));
+    let scene = Scene {
+        projection: ProjectionSpec::Parallel { width: 4.0 },
+        ..CUBE
+    };
+    let view = scene.view::<f32>(8, 8).unwrap();
+    assert!(matches!(
+        RayScene::new(&scene, &view),
+        Err(SceneError::RayCamera(_))
+    ));
+}
+
+#[test]
+fn strip_rendering_with_bands_equals_the_whole_frame() {
+    use crate::target::Band;
+    let (w, h, rows) = (48u16, 36u16, 8u16);
+    for scene in [&builtin::BUNNY, &builtin::CORRIDOR] {
+        let whole = raster_image::<f32>(scene, w, h);
+        let view = scene.view::<f32>(w, h).unwrap();
+        let mut strip = vec![Color::new(0, 0, 0); w as usize * rows as usize];
+        let mut keys = vec![u16::MAX; strip.len()];
+        let mut y0 = 0;
+        while y0 < h as i32 {
+            keys.fill(u16::MAX);
+            let mut band = Band::new(&mut strip, w, rows, w as usize, y0).unwrap();
+            let mut depth = DepthBuffer::new(&mut keys, w, rows, w as usize, y0).unwrap();
+            render_raster(scene, &view, &mut band, &mut depth).unwrap();
+            for y in y0..(y0 + rows as i32).min(h as i32) {
+                for x in 0..w as i32 {
+                    assert_eq!(
+                        band.pixel(x, y),
+                        Some(whole[y as usize * w as usize + x as usize]),
+                        "{} ({x}, {y})",
+                        scene.name
+                    );
+                }
+            }
+            y0 += rows as i32;
+        }
+    }
+}

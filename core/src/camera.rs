@@ -321,23 +321,39 @@ impl<S: Scalar> Projection<S> {
     ///
     /// Returns `None` for perspective when `z ≤ 0` (at or behind the eye;
     /// callers clip against a near plane first) and whenever the result
-    /// overflows or is not finite.
+    /// overflows or is not finite. When `x·focus` alone would overflow
+    /// (e.g. I16F16 with |x|·focus ≥ 32768), `x/z` is formed first, so a
+    /// far point with an on-screen pixel still projects (to within about
+    /// `focus·2⁻¹⁶` px in I16F16) instead of failing or saturating.
     #[must_use]
     pub fn project(&self, p: Vec3<S>) -> Option<(Vec2<S>, S)> {
         let mut overflow = false;
         let out = match self.kind {
-            ProjectionKind::Parallel { scale } => (
-                Vec2::new(self.centre.x + p.x * scale, self.centre.y + p.y * scale),
-                p.z,
-            ),
+            ProjectionKind::Parallel { scale } => {
+                let sx = p.x.checked_mul(scale)?;
+                let sy = p.y.checked_mul(scale)?;
+                (
+                    Vec2::new(
+                        self.centre.x.checked_add(sx)?,
+                        self.centre.y.checked_add(sy)?,
+                    ),
+                    p.z,
+                )
+            }
             ProjectionKind::Perspective { focus } => {
                 if p.z <= S::ZERO || !p.z.is_finite() {
                     return None;
                 }
                 let inv_z = S::ONE.div_flag(p.z, &mut overflow);
-                let sx = (p.x * focus).div_flag(p.z, &mut overflow);
-                let sy = (p.y * focus).div_flag(p.z, &mut overflow);
-                (Vec2::new(self.centre.x + sx, self.centre.y + sy), inv_z)
+                let sx = focus_ratio(p.x, focus, p.z, &mut overflow);
+                let sy = focus_ratio(p.y, focus, p.z, &mut overflow);
+                (
+                    Vec2::new(
+                        self.centre.x.checked_add(sx)?,
+                        self.centre.y.checked_add(sy)?,
+                    ),
+                    inv_z,
+                )
             }
         };
         (!overflow && out.0.is_finite() && out.1.is_finite()).then_some(out)
@@ -367,6 +383,25 @@ impl<S: Scalar> Projection<S> {
                     [z, z, o, z],
                 ],
             },
+        }
+    }
+}
+
+/// `focus·x/z`: the product first (the more precise order), or, when
+/// `x·focus` overflows (fixed point beyond its range, float beyond
+/// ±MAX), the quotient `x/z` first, which stays small for any point
+/// inside the view volume. Before this fallback a saturated product gave
+/// a wrong pixel without any error (stability suite,
+/// `tests/tests/stability_geometry.rs`).
+fn focus_ratio<S: Scalar>(x: S, focus: S, z: S, overflow: &mut bool) -> S {
+    match x.checked_mul(focus) {
+        Some(xf) => xf.div_flag(z, overflow),
+        None => {
+            let r = x.div_flag(z, overflow);
+            r.checked_mul(focus).unwrap_or_else(|| {
+                *overflow = true;
+                S::ZERO
+            })
         }
     }
 }

@@ -19,7 +19,7 @@
 //! | [`raster`] | integer scan conversion of convex polygons (28.4 sub-pixel, top-left rule) into spans; span shaders (flat, Gouraud, affine and perspective-correct textures, exact or subdivided); optional depth buffer |
 //! | [`texture`] | texture-mapping vectors (axis-edge fast path, any polygon via [`solve`]), the per-pixel perspective mapping, and the affine/perspective choice from a distortion bound |
 //! | [`target`] | span sinks: slice framebuffer with stride, bands for strip rendering, embedded-graphics `DrawTarget` adapter |
-//! | [`ray`] | screen→world: rays from a ray-casting camera, planes, polygons with four inclusion tests, spheres, watertight triangles, nearest hit, bounding boxes and a uniform grid |
+//! | [`ray`] | screen→world: rays from a ray-casting camera, planes, polygons with four inclusion tests, spheres, watertight triangles, nearest hit, bounding boxes and spheres, a uniform grid, and a column caster over 2D grid maps |
 //! | [`scene`] | one borrowed scene description (meshes, poses, materials, light, camera) rendered by both paths with one material model; built-in demo scenes as static data |
 //!
 //! ## Coordinate conventions
@@ -50,12 +50,64 @@
 //!
 //! ## Crate features
 //!
-//! None yet: everything above is always compiled, and generic code costs
-//! nothing until it is instantiated.
+//! Whole stages are cargo features, so that a firmware links only what its
+//! scenes use. The default is the minimal flat-shaded raster path
+//! (scalars, math, solver, cameras, pipeline with near and side clipping,
+//! the scan converter with [`Flat`](raster::Flat) and
+//! [`NoDepth`](raster::NoDepth), targets, scene descriptions). Generic code
+//! costs nothing until it is instantiated; the features remove what
+//! [`scene::render_raster`] would otherwise link for every material.
+//!
+//! | feature | adds | needs |
+//! |---|---|---|
+//! | `depth` | `raster::DepthBuffer` | |
+//! | `gouraud` | `raster::Gouraud`; Gouraud materials in [`scene::render_raster`] | |
+//! | `texture` | `texture`, the affine texture shaders; affine texture materials | |
+//! | `perspective` | `raster::PerspectiveTexture`; perspective and `Auto` texture materials | `texture` |
+//! | `clip-far` | clipping at the far plane (without it, geometry beyond `far` is drawn, its depth key saturated at the far value) | |
+//! | `raycast` | `ray`, `scene::RayScene` | |
+//! | `sphere` | `ray::Sphere`; spheres in `scene::RayScene` | `raycast` |
+//! | `grid` | `ray::Grid` | `raycast` |
+//! | `column` | the column (grid-map) caster `ray::column` | `raycast`, `texture` |
+//! | `full` | all of the above (the host simulator, tests and fuzzers use it) | |
+//!
+//! What the stages cost, measured by `bash tests/mcu/run` on firmware that
+//! renders built-in scenes at 320×240 in I16F16 through 16-row strips
+//! (thumbv6m, `opt-level = "s"`, LTO; full table in `docs/mcu/tables.md`):
+//!
+//! | firmware (features) | .text | of which written in sightline | difference |
+//! |---|---:|---:|---:|
+//! | cube: flat + `depth` | 31 544 | 15 452 | base |
+//! | bunny: + `gouraud` | 50 520 | 25 446 | +18 976 |
+//! | corridor: + `texture`, `perspective` (no `gouraud`) | 71 924 | 34 062 | +40 380 |
+//! | all five scenes: `full` (adds `raycast`, `sphere`, `clip-far`) | 112 428 | 63 546 | +80 884 |
+//!
+//! The differences include each scene's own use of the stage (e.g. vertex
+//! normals for the bunny); `depth`, `clip-far`, `grid` and `column` were not
+//! measured on their own.
+//!
+//! A combination that cannot work (e.g. `perspective` without `texture`)
+//! is a `compile_error!` naming the missing feature. A scene whose material
+//! needs a stage that is left out is refused at run time with
+//! [`SceneError::FeatureDisabled`](scene::SceneError::FeatureDisabled),
+//! before anything is drawn.
 
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs, missing_debug_implementations)]
+
+#[cfg(all(feature = "perspective", not(feature = "texture")))]
+compile_error!(
+    "feature `perspective` needs feature `texture` (it adds perspective-correct texture shaders)"
+);
+#[cfg(all(feature = "sphere", not(feature = "raycast")))]
+compile_error!("feature `sphere` needs feature `raycast` (spheres are drawn by the ray path only)");
+#[cfg(all(feature = "grid", not(feature = "raycast")))]
+compile_error!("feature `grid` needs feature `raycast` (the grid accelerates ray queries)");
+#[cfg(all(feature = "column", not(feature = "raycast")))]
+compile_error!("feature `column` needs feature `raycast` (the column caster is a ray caster)");
+#[cfg(all(feature = "column", not(feature = "texture")))]
+compile_error!("feature `column` needs feature `texture` (the column caster draws textured walls)");
 
 #[cfg(test)]
 extern crate std;
@@ -64,13 +116,17 @@ pub mod camera;
 pub mod math;
 pub mod pipeline;
 pub mod raster;
+#[cfg(feature = "raycast")]
 pub mod ray;
 pub mod scalar;
 pub mod scene;
 pub mod solve;
 pub mod target;
+#[cfg(feature = "texture")]
 pub mod texture;
 pub mod transform;
 
+// Shared by the test modules; a build with fewer stages runs fewer of them.
 #[cfg(test)]
+#[allow(dead_code)]
 mod test_util;

@@ -458,5 +458,5 @@ pub fn choose_mapping<S: Scalar>(z: [S; 3], uv: [Vec2<S>; 3], threshold: S) -> M
     }
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "perspective", feature = "depth"))]
 mod tests;

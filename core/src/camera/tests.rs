@@ -385,3 +385,26 @@ fn fixed_object_to_view_agrees_with_f64() {
     std::println!("I16F16 object→view max error within ±100 units: {worst:.2e}");
     assert!(worst <= 2e-2, "I16F16 object→view error {worst}");
 }
+
+/// Regression: I16F16 perspective projection of far points whose
+/// `x·focus` exceeds ±32768 although the pixel is on screen. It used to
+/// saturate the product and return a pixel up to ~110 px off with no
+/// error; now it divides first and lands within 0.01 px of f64.
+#[test]
+fn fixed_projection_survives_x_times_focus_overflow() {
+    let p16 = Projection::<I16F16>::perspective(I16F16::from_f64(120.0), 240, 240);
+    let p64 = Projection::<f64>::perspective(120.0, 240, 240);
+    for (x, y, z) in [
+        (2000.0, 1500.0, 3000.0),
+        (20000.0, -9000.0, 30000.0),
+        (-30000.0, 250.0, 32000.0),
+    ] {
+        let (want, _) = p64.project(Vec3::new(x, y, z)).unwrap();
+        let (got, _) = p16.project(v3(x, y, z)).unwrap();
+        let e = (got.x.to_f64() - want.x).hypot(got.y.to_f64() - want.y);
+        assert!(e < 0.01, "({x}, {y}, {z}): {e} px");
+    }
+    // Parallel projection whose result is out of range reports it.
+    let par = Projection::<I16F16>::parallel(I16F16::from_f64(100.0), 240, 240);
+    assert_eq!(par.project(v3(400.0, 0.0, 1.0)), None);
+}

@@ -149,12 +149,18 @@ impl<S: Scalar> Mat3<S> {
     /// accumulates many small incremental products.
     ///
     /// Returns `None` when the first two rows are zero, parallel or not
-    /// finite.
+    /// finite; "parallel" means that row 1's component orthogonal to row 0
+    /// is within 64·ε of row 1's size, where its direction would be
+    /// rounding noise.
     #[must_use]
     pub fn try_orthonormalize(&self) -> Option<Self> {
         let r0 = self.row(0).try_normalize()?;
         let r1 = self.row(1);
-        let r1 = (r1 - r0 * r0.dot(r1)).try_normalize()?;
+        let rest = r1 - r0 * r0.dot(r1);
+        if rest.max_abs() <= r1.max_abs() * S::EPSILON * S::from_i32(64) {
+            return None;
+        }
+        let r1 = rest.try_normalize()?;
         Some(Self::from_rows(r0, r1, r0.cross(r1)))
     }
     /// Converts every entry to another scalar type.

@@ -174,3 +174,42 @@ fn non_finite_vectors_do_not_normalize() {
     assert_eq!(Vec3::new(f32::INFINITY, 1.0, 0.0).try_normalize(), None);
     assert_eq!(Vec3::new(f32::NAN, 1.0, 0.0).normalize(), Vec3::ZERO);
 }
+
+/// `try_orthonormalize` restores a drifted rotation: the result is
+/// orthonormal and right-handed to a few ε, keeps row 0's direction, stays
+/// close to the input, and rejects parallel or zero leading rows.
+/// (Regression: exactly parallel rows used to return a "rotation" built
+/// from the rounding residue of row 1 instead of `None`.)
+#[test]
+fn orthonormalize_repairs_a_drifted_rotation() {
+    let r = Mat3::rotation_x(0.4f64)
+        .mul_mat3(&Mat3::rotation_y(-1.1))
+        .mul_mat3(&Mat3::rotation_z(2.0));
+    // Drift: scale and shear the rows by ~1e-3.
+    let d = Mat3::from_rows(
+        r.row(0) * 1.001,
+        r.row(1) + r.row(0) * 2e-3,
+        r.row(2) * 0.999 + r.row(1) * 1e-3,
+    );
+    let o = d.try_orthonormalize().unwrap();
+    let oot = o.mul_mat3(&o.transpose());
+    for i in 0..3 {
+        let e = Vec3::new(
+            f64::from(u8::from(i == 0)),
+            f64::from(u8::from(i == 1)),
+            f64::from(u8::from(i == 2)),
+        );
+        assert!((oot.row(i) - e).max_abs() < 4.0 * f64::EPSILON, "row {i}");
+        // Within the drift of the exact rotation.
+        assert!((o.row(i) - r.row(i)).max_abs() < 5e-3, "row {i}");
+    }
+    assert!((o.determinant() - 1.0).abs() < 4.0 * f64::EPSILON);
+    assert!(
+        o.row(0).cross(r.row(0)).max_abs() < 1e-15,
+        "row 0 keeps its direction"
+    );
+    let parallel = Mat3::from_rows(r.row(0), r.row(0) * 2.0, r.row(2));
+    assert_eq!(parallel.try_orthonormalize(), None);
+    let zero = Mat3::from_rows(Vec3::ZERO, r.row(1), r.row(2));
+    assert_eq!(zero.try_orthonormalize(), None);
+}

@@ -182,8 +182,69 @@ fn intersect<S: Scalar, A: Attributes<S>>(
     };
     // dp and dq have opposite signs, so |dp − dq| ≥ |dp| and t ∈ [0, 1]
     // up to rounding; clamp for fixed point, whose division saturates.
-    let t = (dp / (dp - dq)).clamp_to(S::ZERO, S::ONE);
+    //
+    // Floats with huge (finite) coordinates: n·p + d or dp − dq can
+    // overflow to ±∞, and `dp / (dp − dq)` becomes 0 or NaN, which picked
+    // the vertex *outside* the plane (found by the `clip` fuzz target).
+    // Halve both when only the difference overflows, and use the limit
+    // when a distance itself is infinite.
+    let den = dp - dq;
+    let t = if den.is_finite() {
+        dp / den
+    } else {
+        (dp * S::HALF) / (dp * S::HALF - dq * S::HALF)
+    };
+    let t = if t.is_finite() {
+        t.clamp_to(S::ZERO, S::ONE)
+    } else if dp.is_finite() {
+        // |dq| = ∞: the crossing tends to p.
+        S::ZERO
+    } else if dq.is_finite() {
+        S::ONE
+    } else if dp > S::ZERO {
+        // Both infinite: keep the endpoint inside.
+        S::ZERO
+    } else {
+        S::ONE
+    };
     lerp_vertex(p, q, t)
+}
+
+/// The same half-space with its largest coefficient scaled into
+/// `[1/8, 1/4)` by a power of two (floats only). Scaling by a power of two
+/// is exact, so signs and the ratios `dp / (dp − dq)` are unchanged, but
+/// `n·p + d` can no longer overflow for finite `p`: a huge coefficient
+/// (e.g. `−f32::MAX`) made every distance ±∞ and picked intersection
+/// points outside the plane (found by the `clip` fuzz target). Fixed
+/// point is returned unchanged.
+fn scaled<S: Scalar>(plane: &Plane<S>) -> Plane<S> {
+    if !S::IS_FLOAT {
+        return *plane;
+    }
+    let n = plane.n;
+    let m =
+        n.x.abs()
+            .max_of(n.y.abs())
+            .max_of(n.z.abs())
+            .max_of(plane.d.abs())
+            .to_f64();
+    if !(m > 0.0 && m.is_finite()) {
+        return *plane;
+    }
+    // 2^e ≤ m < 2^(e+1) (subnormal m: e = −1023, good enough), k = 2^−(e+3).
+    let e = ((m.to_bits() >> 52) & 0x7ff) as i64 - 1023;
+    let ke = -(e + 3);
+    let kf = if ke >= -1022 {
+        f64::from_bits(((ke + 1023) as u64) << 52)
+    } else {
+        f64::from_bits(1u64 << (ke + 1074))
+    };
+    let k = S::from_f64(kf);
+    if k.to_f64() != kf {
+        // Not a power of two in S (beyond f32's range): leave it.
+        return *plane;
+    }
+    Plane::new(n * k, plane.d * k)
 }
 
 fn clip_one<S: Scalar, A: Attributes<S>>(
@@ -191,6 +252,7 @@ fn clip_one<S: Scalar, A: Attributes<S>>(
     input: &ClippedPolygon<S, A>,
     out: &mut ClippedPolygon<S, A>,
 ) -> Result<(), ClipError> {
+    let plane = &scaled(plane);
     out.clear();
     let Some(last) = input.last() else {
         return Ok(());

@@ -133,6 +133,7 @@ pub enum Cull {
 /// drawn with a depth buffer into a 240×240 Rgb565 frame:
 ///
 /// ```
+/// # #[cfg(all(feature = "gouraud", feature = "depth"))] {
 /// use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 /// use sightline::camera::Projection;
 /// use sightline::math::Vec3;
@@ -152,6 +153,7 @@ pub enum Cull {
 /// let tri = [v(-1.0, 0.5, -1.0, 0.0), v(1.0, 0.5, 3.0, 1.0), v(-1.0, -0.5, 3.0, 0.5)];
 /// pipe.draw_polygon(&mut fb, &mut depth, &Gouraud::new(&ramp), &tri).unwrap();
 /// assert!(fb.as_slice().iter().any(|&p| p != Rgb565::BLACK));
+/// # }
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pipeline<S> {
@@ -256,8 +258,16 @@ impl<S: Scalar> Pipeline<S> {
                 )
             }
         };
+        // Without `clip-far`, geometry beyond `far` is not cut off: its
+        // depth keys saturate at the far value (65535).
+        #[cfg(feature = "clip-far")]
         let frustum =
             Frustum::from_planes(&[near_p, far_p, sides[0], sides[1], sides[2], sides[3]]);
+        #[cfg(not(feature = "clip-far"))]
+        let frustum = {
+            let _ = far_p;
+            Frustum::from_planes(&[near_p, sides[0], sides[1], sides[2], sides[3]])
+        };
         Ok(Self {
             projection,
             frustum,
@@ -373,5 +383,12 @@ impl<S: Scalar> Pipeline<S> {
     }
 }
 
-#[cfg(test)]
+#[cfg(all(
+    test,
+    feature = "gouraud",
+    feature = "texture",
+    feature = "perspective",
+    feature = "depth",
+    feature = "clip-far"
+))]
 mod tests;

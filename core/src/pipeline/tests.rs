@@ -800,3 +800,91 @@ macro_rules! pipeline_tests {
 pipeline_tests!(f32_tests, f32);
 pipeline_tests!(i16f16_tests, I16F16);
 pipeline_tests!(f64_tests, f64);
+
+/// Fuzz regression (`clip`): huge finite coordinates overflow the plane
+/// distance (`n·p + d = −∞`) or the difference of two distances; the
+/// intersection parameter then became 0 or NaN and the clipper kept the
+/// vertex outside the plane. Every output vertex must be finite and inside
+/// (to rounding of the coordinates' magnitude).
+fn huge_coordinates_clip_inside<S: Scalar>() {
+    let big = S::MAX;
+    let planes = [Plane::new(v3::<S>(2.0, 2.0, 2.0), S::from_f64(15.625))];
+    let f = Frustum::from_planes(&planes);
+    let v = |x: S, y: S, z: S, i: f64| Vertex::new(Vec3::new(x, y, z), Intensity(S::from_f64(i)));
+    let s = S::from_f64;
+    let cases = [
+        // The fuzz input: one vertex at z = −MAX.
+        [
+            v(s(13.5), s(18.5), s(18.5), 0.0),
+            v(s(0.0), s(23.5), -big, 1.0),
+            v(s(6.75), s(0.0), s(0.0), 0.5),
+        ],
+        // Vertices at both ends of the range: b − a overflows in lerp.
+        [
+            v(-big, s(0.0), s(0.0), 0.0),
+            v(big, s(1.0), s(0.0), 1.0),
+            v(s(0.0), big, s(0.0), 0.5),
+        ],
+        [
+            v(big, -big, s(1.0), 0.0),
+            v(-big, big, s(1.0), 1.0),
+            v(-big, -big, s(1.0), 0.5),
+        ],
+    ];
+    for poly in &cases {
+        let out = f.clip(poly).unwrap();
+        for o in &out {
+            let p = [o.pos.x.to_f64(), o.pos.y.to_f64(), o.pos.z.to_f64()];
+            assert!(
+                p.iter().all(|c| c.is_finite()) && o.attr.0.is_finite(),
+                "{o:?}"
+            );
+            assert!((0.0..=1.0).contains(&o.attr.0.to_f64()), "{o:?}");
+            let dist = 2.0 * (p[0] + p[1] + p[2]) + 15.625;
+            let tol = 64.0 * S::EPSILON.to_f64() * big.to_f64();
+            assert!(dist >= -tol, "{}: {p:?} outside by {}", S::NAME, -dist);
+        }
+    }
+    // The third fuzz input: a + (b − a)·t rounded past MAX to +∞ (then
+    // ∞ − ∞ = NaN at the next plane).
+    let f = Frustum::from_planes(&[Plane::new(v3::<S>(1.0, 0.0, 0.0), s(11.96875))]);
+    let poly = [
+        v(
+            -s(2.0908917e38) * (big / s(3.4028235e38)),
+            s(1.3119319e38) * (big / s(3.4028235e38)),
+            s(16.0),
+            0.0,
+        ),
+        v(s(-3.0517676e-5), big, s(41.5), 1.0),
+        v(s(0.0), s(0.0), s(41.5), 0.5),
+    ];
+    for o in &f.clip(&poly).unwrap() {
+        assert!(o.pos.is_finite(), "{}: {o:?}", S::NAME);
+    }
+    // The second fuzz input: a plane coefficient of −MAX made every
+    // distance ±∞ and kept a vertex 0.375·MAX outside.
+    let f = Frustum::from_planes(&[Plane::new(Vec3::new(S::ZERO, s(41.5), -big), S::ZERO)]);
+    let poly = [
+        v(s(0.0), s(0.5), s(0.375), 0.0),
+        v(s(0.0), s(6.625), s(-9.0625), 1.0),
+        v(s(0.0), s(1.3125), s(-11.0), 0.5),
+    ];
+    let out = f.clip(&poly).unwrap();
+    assert_eq!(out.len(), 4, "{}: {out:?}", S::NAME);
+    for o in &out {
+        let (y, z) = (o.pos.y.to_f64(), o.pos.z.to_f64());
+        let dist = 41.5 * y - big.to_f64() * z;
+        let tol = 64.0 * S::EPSILON.to_f64() * big.to_f64() * 11.0;
+        assert!(dist >= -tol, "{}: ({y}, {z}) outside by {}", S::NAME, -dist);
+    }
+}
+
+#[test]
+fn huge_coordinates_clip_inside_f32() {
+    huge_coordinates_clip_inside::<f32>();
+}
+
+#[test]
+fn huge_coordinates_clip_inside_f64() {
+    huge_coordinates_clip_inside::<f64>();
+}

@@ -98,7 +98,16 @@ pub struct IntensityUv<S> {
 
 #[inline]
 fn lerp<S: Scalar>(a: S, b: S, t: S) -> S {
-    a + (b - a) * t
+    let r = a + (b - a) * t;
+    if r.is_finite() {
+        r
+    } else {
+        // Floats at the ends of the range: b − a, or its rounding in
+        // a + (b − a)·t, overflows to ±∞ (and ∞·0 is NaN) although the
+        // exact value lies between a and b (found by the `clip` fuzz
+        // target). Fixed point never gets here.
+        a * (S::ONE - t) + b * t
+    }
 }
 
 /// Intensity `[0, 1]` → 0..=255 in 16.16.

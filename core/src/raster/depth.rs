@@ -5,7 +5,9 @@
 //! (`ENABLED` is a constant), so a scene without a depth buffer pays
 //! nothing for the feature.
 
-use crate::target::{BufferError, Rect, layout::Layout};
+use crate::target::Rect;
+#[cfg(feature = "depth")]
+use crate::target::{BufferError, layout::Layout};
 
 /// Depth keys: 0 is nearest, 65535 farthest. The pipeline maps the near
 /// plane to 0 and the far plane to 65535 (see
@@ -132,12 +134,14 @@ mod private {
 ///
 /// Validated once by [`DepthBuffer::new`]; afterwards no method panics or
 /// writes outside the slice.
+#[cfg(feature = "depth")]
 #[derive(Debug)]
 pub struct DepthBuffer<'a, K: StoredDepth = DepthKey> {
     buf: &'a mut [K],
     layout: Layout,
 }
 
+#[cfg(feature = "depth")]
 impl<'a, K: StoredDepth> DepthBuffer<'a, K> {
     /// Wraps `buf` as `rows` rows of `width` keys, `stride` apart, for
     /// frame rows `y0..y0+rows`.
@@ -189,6 +193,7 @@ impl<'a, K: StoredDepth> DepthBuffer<'a, K> {
     }
 }
 
+#[cfg(feature = "depth")]
 impl<K: StoredDepth> DepthTest for DepthBuffer<'_, K> {
     const ENABLED: bool = true;
 
@@ -246,6 +251,7 @@ impl<K: StoredDepth> DepthTest for DepthBuffer<'_, K> {
     }
 }
 
+#[cfg(feature = "depth")]
 impl<K: StoredDepth> DepthBuffer<'_, K> {
     /// The fused loop of [`DepthTest::test_write`]: one pass over the
     /// keys and the pixels together.
@@ -301,6 +307,7 @@ impl<K: StoredDepth> DepthBuffer<'_, K> {
 /// Counts leading pixels that fail (key ≥ stored); returns the count and
 /// the z after them. The span set-up keeps z within
 /// 0..=65535·256+255, so the shift gives the key exactly.
+#[cfg(feature = "depth")]
 #[inline(never)]
 fn skip_failing<K: StoredDepth>(row: &[K], mut z: i32, dz: i32) -> (usize, i32) {
     let mut n = 0;
@@ -316,6 +323,7 @@ fn skip_failing<K: StoredDepth>(row: &[K], mut z: i32, dz: i32) -> (usize, i32) 
 
 /// Stores leading keys that pass (key < stored); returns the count and
 /// the z after them.
+#[cfg(feature = "depth")]
 #[inline(never)]
 fn store_passing<K: StoredDepth>(row: &mut [K], mut z: i32, dz: i32) -> (usize, i32) {
     let mut n = 0;

@@ -78,7 +78,13 @@ impl Gradient {
             x0,
             y0,
             step: gx.saturating_add(1 << (EXTRA - 5)) >> (EXTRA - 4),
-            small: gx.abs() < lim && gy.abs() < lim && a[0].abs() < 1 << 52,
+            // `unsigned_abs`: a saturated gradient is i64::MIN, whose `abs`
+            // overflows (a panic with debug assertions, and a wrapped
+            // negative value that wrongly chose the fast path otherwise;
+            // found by the `raster` fuzz target).
+            small: gx.unsigned_abs() < lim as u64
+                && gy.unsigned_abs() < lim as u64
+                && a[0].unsigned_abs() < 1 << 52,
         }
     }
 

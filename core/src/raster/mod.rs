@@ -51,14 +51,22 @@ mod depth;
 mod edge;
 mod gradient;
 mod shader;
+#[cfg(feature = "texture")]
 mod texture;
 
-pub use depth::{DEPTH_FRAC_BITS, DepthBuffer, DepthKey, DepthTest, NoDepth, StoredDepth};
-pub use shader::{Flat, Gouraud, Shade, SpanShader, VARYING_FRAC_BITS};
-pub use texture::{
-    AffineTexture, Clamp, LitAffineTexture, PERSPECTIVE_Q_BITS, PerspectiveTexture, Repeat,
-    RepeatPow2, Texture, Wrap,
-};
+#[cfg(feature = "depth")]
+pub use depth::DepthBuffer;
+pub use depth::{DEPTH_FRAC_BITS, DepthKey, DepthTest, NoDepth, StoredDepth};
+#[cfg(feature = "gouraud")]
+pub use shader::Gouraud;
+pub use shader::{Flat, Shade, SpanShader, VARYING_FRAC_BITS};
+#[cfg(feature = "perspective")]
+pub use texture::PerspectiveTexture;
+#[cfg(feature = "texture")]
+pub use texture::{AffineTexture, Clamp, LitAffineTexture, Repeat, RepeatPow2, Texture, Wrap};
+
+/// Fractional bits of the perspective varying `q = near/z ∈ (0, 1]`.
+pub const PERSPECTIVE_Q_BITS: u32 = 24;
 
 use crate::target::Target;
 use edge::{EdgeStepper, first_center};
@@ -399,5 +407,11 @@ where
     }
 }
 
-#[cfg(test)]
+#[cfg(all(
+    test,
+    feature = "gouraud",
+    feature = "texture",
+    feature = "perspective",
+    feature = "depth"
+))]
 mod tests;

@@ -89,11 +89,13 @@ impl<C: Copy, const K: usize> SpanShader<K> for Flat<C> {
 /// `ramp[0]`.
 ///
 /// Build a ramp with [`Shade::ramp`] or fill one by hand (a palette).
+#[cfg(feature = "gouraud")]
 #[derive(Clone, Copy, Debug)]
 pub struct Gouraud<'a, C> {
     ramp: &'a [C; 256],
 }
 
+#[cfg(feature = "gouraud")]
 impl<'a, C: Copy> Gouraud<'a, C> {
     /// Gouraud shading through `ramp`: intensity i gives `ramp[i]`.
     #[must_use]
@@ -102,6 +104,7 @@ impl<'a, C: Copy> Gouraud<'a, C> {
     }
 }
 
+#[cfg(feature = "gouraud")]
 impl<C: Copy, const K: usize> SpanShader<K> for Gouraud<'_, C> {
     type Color = C;
     const RANGE: (i32, i32) = (0, (256 << VARYING_FRAC_BITS) - 1);

@@ -978,3 +978,29 @@ proptest! {
         }
     }
 }
+
+/// Fuzz regression (`raster`): a sliver 9.8 million pixels tall with large
+/// varyings saturates a gradient to `i64::MIN`, whose `abs()` overflowed
+/// while choosing the plane's fast path (a panic with debug assertions).
+/// It must draw without panicking and only inside the band.
+#[test]
+fn saturated_gradient_does_not_overflow() {
+    let ramp: [u8; 256] = core::array::from_fn(|i| (i as u8).max(1));
+    let (w, h, stride, y0) = (13u16, 16u16, 16usize, -5);
+    let len = stride * (h as usize - 1) + w as usize;
+    let mut px = std::vec![0u8; len];
+    let mut keys = std::vec![u16::MAX; len];
+    let mut band = crate::target::Band::new(&mut px, w, h, stride, y0).unwrap();
+    let mut depth = DepthBuffer::<u16>::new(&mut keys, w, h, stride, y0).unwrap();
+    let verts = [
+        ScreenVertex::new(-1, 156_850_543, 65369, [185_273_329]),
+        ScreenVertex::new(0, -1, 65535, [872_415_231]),
+        ScreenVertex::new(0, 0, 0, [0]),
+    ];
+    let _ = fill_polygon(&mut band, &mut depth, &Gouraud::new(&ramp), &verts);
+    for (i, &p) in px.iter().enumerate() {
+        if i % stride >= w as usize {
+            assert_eq!(p, 0, "stride padding written at {i}");
+        }
+    }
+}

@@ -15,12 +15,13 @@
 //!   runs of `N` pixels and steps linearly between them (the classic
 //!   subdivided affine compromise: two divisions per run).
 
+#[cfg(feature = "perspective")]
+use super::PERSPECTIVE_Q_BITS;
 use super::shader::{Shade, SpanShader, VARYING_FRAC_BITS};
-use crate::target::{BufferError, Target, layout::Layout};
+#[cfg(feature = "perspective")]
+use crate::target::Target;
+use crate::target::{BufferError, layout::Layout};
 use core::fmt::Debug;
-
-/// Fractional bits of the perspective varying `q = near/z ∈ (0, 1]`.
-pub const PERSPECTIVE_Q_BITS: u32 = 24;
 
 /// A read-only texture over a caller-supplied slice, row-major with a
 /// stride.
@@ -228,12 +229,14 @@ impl<C: Shade, W: Wrap> SpanShader<3> for LitAffineTexture<'_, C, W> {
 /// `N` is the run length between exact divisions: 1 for exact per-pixel
 /// division, 8, 16 or 32 for subdivided affine runs (any `N ≥ 1` works).
 /// Feed it [`UvPerspective`](crate::pipeline::UvPerspective) vertices.
+#[cfg(feature = "perspective")]
 #[derive(Clone, Copy, Debug)]
 pub struct PerspectiveTexture<'a, C, W, const N: u32> {
     tex: Texture<'a, C>,
     wrap: W,
 }
 
+#[cfg(feature = "perspective")]
 impl<'a, C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'a, C, W, N> {
     /// A perspective texture shader; `None` if `W` does not accept the
     /// texture's size.
@@ -246,6 +249,7 @@ impl<'a, C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'a, C, W, N> {
     }
 }
 
+#[cfg(feature = "perspective")]
 impl<C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'_, C, W, N> {
     /// Pixels of one run from (u, v) = `a` stepping by `d` (16.16).
     #[inline]
@@ -279,6 +283,7 @@ impl<C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'_, C, W, N> {
 }
 
 /// (u, v) in 16.16 from (u·q, v·q) in 16.16 and q in 8.24.
+#[cfg(feature = "perspective")]
 #[inline]
 fn divide(v: &[i32; 3]) -> (i64, i64) {
     // q ≥ 1 guards the division; |u·q| < 2^31, so the shift stays below
@@ -290,11 +295,13 @@ fn divide(v: &[i32; 3]) -> (i64, i64) {
     )
 }
 
+#[cfg(feature = "perspective")]
 #[inline]
 fn texel_coord(u: i64) -> i32 {
     (u >> VARYING_FRAC_BITS).clamp(i32::MIN as i64, i32::MAX as i64) as i32
 }
 
+#[cfg(feature = "perspective")]
 impl<C: Copy, W: Wrap, const N: u32> SpanShader<3> for PerspectiveTexture<'_, C, W, N> {
     type Color = C;
     // Runs of N > 1 step between exact divisions, which `color` alone

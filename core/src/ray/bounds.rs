@@ -1,5 +1,10 @@
-//! Axis-aligned bounding boxes with the slab test, and [`Bounded`], which
-//! puts a box around any shape so that a miss costs one box test.
+//! Bounding volumes: axis-aligned boxes with the slab test, bounding
+//! spheres, and [`Bounded`], which puts either around any shape so that a
+//! miss costs one bound test.
+//!
+//! Both volumes implement [`BoundingVolume`]; its test is **conservative**:
+//! it may report a ray that just misses the volume, never the reverse, so
+//! a bounded shape returns exactly the hits of the unbounded one.
 //!
 //! The slab test (Kay and Kajiya 1986; the robust form of Williams, Barrus,
 //! Morley and Shirley, "An Efficient and Robust Ray–Box Intersection
@@ -14,6 +19,7 @@
 
 use super::Ray;
 use super::nearest::{Intersect, SurfaceHit};
+use super::wide::sub3;
 use crate::math::Vec3;
 use crate::scalar::Scalar;
 use core::fmt;
@@ -156,18 +162,208 @@ impl<S: Scalar> Aabb<S> {
     }
 }
 
-/// A shape with a bounding box (in the shape's space) tested first.
-#[derive(Clone, Copy, Debug)]
-pub struct Bounded<S, P> {
-    /// The box; must contain the shape's surface.
-    pub bounds: Aabb<S>,
-    /// The shape.
-    pub shape: P,
+/// A volume that can cheaply rule out a ray.
+pub trait BoundingVolume<S: Scalar> {
+    /// `false` only if the ray meets no point of the volume at `t > t_min`
+    /// (conservative: `true` may be a near miss).
+    fn may_hit(&self, ray: &Ray<S>, t_min: S) -> bool;
 }
 
-impl<S: Scalar, P: Intersect<S>> Intersect<S> for Bounded<S, P> {
+impl<S: Scalar> BoundingVolume<S> for Aabb<S> {
+    #[inline]
+    fn may_hit(&self, ray: &Ray<S>, t_min: S) -> bool {
+        self.intersect_range(ray, t_min, S::MAX).is_some()
+    }
+}
+
+/// A shape with a bounding volume (in the shape's space) tested first: an
+/// [`Aabb`] by default, or a [`BoundingSphere`].
+#[derive(Clone, Copy, Debug)]
+pub struct Bounded<S, P, B = Aabb<S>> {
+    /// The volume; must contain the shape's surface.
+    pub bounds: B,
+    /// The shape.
+    pub shape: P,
+    _scalar: core::marker::PhantomData<S>,
+}
+
+impl<S, P, B> Bounded<S, P, B> {
+    /// `shape` inside `bounds`.
+    #[must_use]
+    pub const fn new(bounds: B, shape: P) -> Self {
+        Self {
+            bounds,
+            shape,
+            _scalar: core::marker::PhantomData,
+        }
+    }
+}
+
+impl<S: Scalar, P: Intersect<S>, B: BoundingVolume<S>> Intersect<S> for Bounded<S, P, B> {
     fn intersect_ray(&self, ray: &Ray<S>, t_min: S) -> Option<SurfaceHit<S>> {
-        self.bounds.intersect_range(ray, t_min, S::MAX)?;
+        if !self.bounds.may_hit(ray, t_min) {
+            return None;
+        }
         self.shape.intersect_ray(ray, t_min)
     }
+}
+
+/// Why a [`BoundingSphere`] could not be built.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BoundingSphereError {
+    /// A coordinate or the radius is NaN or ±∞, or the radius is negative.
+    NonFinite,
+    /// No points were given.
+    Empty,
+    /// A difference of two points overflows the scalar (fixed point).
+    Overflow,
+}
+
+impl fmt::Display for BoundingSphereError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::NonFinite => f.write_str("bounding sphere input is NaN, infinite or negative"),
+            Self::Empty => f.write_str("no points to bound"),
+            Self::Overflow => f.write_str("point differences overflow the scalar"),
+        }
+    }
+}
+
+impl core::error::Error for BoundingSphereError {}
+
+/// A closed bounding sphere `|X − C| ≤ r` (r ≥ 0).
+///
+/// [`BoundingSphere::from_points`] uses Ritter's algorithm (J. Ritter, "An
+/// Efficient Bounding Sphere", *Graphics Gems*, 1990): two passes, at most
+/// about 5–20 % larger than the minimal sphere in practice, no guarantee
+/// of minimality. A final pass sets the radius to the largest distance
+/// from the centre, padded by a few ulps, so every point is inside despite
+/// rounding.
+///
+/// The ray test ([`BoundingVolume::may_hit`]) works in the frame scaled by
+/// `s = max(‖Q − C‖_∞, r)` with a unit direction, so every intermediate is
+/// a few units at most (the scaling of [`Sphere`](super::Sphere), after
+/// Ray Tracing Gems ch. 7): it rejects when the distance from the centre
+/// to the ray's line exceeds `r` by more than 8 ulps of `s`, or when
+/// the origin is outside and the ray points away. A fixed-point difference
+/// that overflows is not used to reject.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BoundingSphere<S> {
+    centre: Vec3<S>,
+    radius: S,
+}
+
+impl<S: Scalar> BoundingSphere<S> {
+    /// The sphere with the given centre and radius.
+    ///
+    /// # Errors
+    /// [`BoundingSphereError::NonFinite`] for NaN, ±∞ or a negative radius.
+    pub fn new(centre: Vec3<S>, radius: S) -> Result<Self, BoundingSphereError> {
+        if !(centre.is_finite() && radius.is_finite() && radius >= S::ZERO) {
+            return Err(BoundingSphereError::NonFinite);
+        }
+        Ok(Self { centre, radius })
+    }
+
+    /// Ritter's bounding sphere of the points (see the type docs).
+    ///
+    /// # Errors
+    /// [`BoundingSphereError::Empty`], [`BoundingSphereError::NonFinite`],
+    /// and [`BoundingSphereError::Overflow`] when a difference of two
+    /// points overflows fixed point.
+    pub fn from_points(points: &[Vec3<S>]) -> Result<Self, BoundingSphereError> {
+        let (&x, _) = points.split_first().ok_or(BoundingSphereError::Empty)?;
+        if !points.iter().all(|p| p.is_finite()) {
+            return Err(BoundingSphereError::NonFinite);
+        }
+        let dist = |a: Vec3<S>, b: Vec3<S>| -> Result<S, BoundingSphereError> {
+            Ok(length(sub3(a, b).ok_or(BoundingSphereError::Overflow)?))
+        };
+        let farthest = |from: Vec3<S>| -> Result<Vec3<S>, BoundingSphereError> {
+            let (mut best, mut bd) = (from, S::ZERO);
+            for &p in points {
+                let d = dist(p, from)?;
+                if d > bd {
+                    (best, bd) = (p, d);
+                }
+            }
+            Ok(best)
+        };
+        // Pass 1: a diameter guess from two far-apart points.
+        let y = farthest(x)?;
+        let z = farthest(y)?;
+        let mut centre = (y + z) * S::HALF;
+        let mut radius = dist(z, y)? * S::HALF;
+        // Pass 2: grow to take in each point outside, moving the centre
+        // towards it so the old sphere stays inside the new one.
+        for &p in points {
+            let d = dist(p, centre)?;
+            if d > radius {
+                let r = (radius + d) * S::HALF;
+                let k = (d - radius) * S::HALF / d;
+                let off = sub3(p, centre).ok_or(BoundingSphereError::Overflow)?;
+                centre += off * k;
+                radius = r;
+            }
+        }
+        // Pass 3: the exact largest distance from the chosen centre, then
+        // a pad of a few ulps (relative, and one absolute step for fixed
+        // point) against the rounding of the distances.
+        let mut r = S::ZERO;
+        for &p in points {
+            r = r.max_of(dist(p, centre)?);
+        }
+        let r = r + r * S::EPSILON * S::from_i32(8) + S::EPSILON * S::TWO;
+        Self::new(centre, r)
+    }
+
+    /// The centre.
+    #[must_use]
+    pub fn centre(&self) -> Vec3<S> {
+        self.centre
+    }
+
+    /// The radius.
+    #[must_use]
+    pub fn radius(&self) -> S {
+        self.radius
+    }
+}
+
+impl<S: Scalar> BoundingVolume<S> for BoundingSphere<S> {
+    fn may_hit(&self, ray: &Ray<S>, _t_min: S) -> bool {
+        let Some(f) = sub3(ray.origin(), self.centre) else {
+            return true; // overflow: do not reject
+        };
+        let s = f.max_abs().max_of(self.radius);
+        if s == S::ZERO {
+            return true;
+        }
+        let (f, r) = (f / s, self.radius / s);
+        // A direction of the largest component ±1 first, so that fixed
+        // point does not lose a small direction when squaring it.
+        let d = ray.dir();
+        let Some(d) = (d / d.max_abs()).try_normalize() else {
+            return true;
+        };
+        // Lengths, not squares: in fixed point a small r² would vanish.
+        let pad = S::EPSILON * S::from_i32(8);
+        let b = f.dot(d);
+        let l = f - d * b;
+        if length(l) > r + pad {
+            return false; // the line passes outside
+        }
+        // Origin outside and the ray pointing away: both roots negative.
+        !(length(f) > r + pad && b > pad)
+    }
+}
+
+/// `|v|` computed as `m·|v/m|`, `m = ‖v‖_∞`, so that nothing small is
+/// squared (fixed point would lose it) and nothing large overflows.
+fn length<S: Scalar>(v: Vec3<S>) -> S {
+    let m = v.max_abs();
+    if m == S::ZERO {
+        return S::ZERO;
+    }
+    m * (v / m).length()
 }

@@ -22,7 +22,22 @@
 //! classic "a hit counts only if it is inside the current cell" rule made
 //! compatible with mailboxing. Equal `t` goes to the lower primitive index,
 //! as in [`nearest_hit`](super::nearest_hit), so the result equals brute
-//! force.
+//! force. The one exception: a hit that a primitive reports *outside its
+//! own box* (only through rounding, e.g. a fixed-point ray whose huge
+//! direction quantises t coarsely) may be missed, since the grid visits a
+//! primitive only in the cells its box overlaps (found by the `grid` fuzz
+//! target, which checks everything else).
+//!
+//! Fixed point: the margins above need the ray to spend at least 64 steps
+//! of t (2⁻¹⁶ each) in a cell, i.e. `cell / |d_k| ≥ 64·2⁻¹⁶` on every
+//! axis. A longer direction (the fuzz target found |d| ≈ 32768 with cells
+//! of 5 units) makes the margin round to zero and the walk can stop or
+//! step early and miss a hit; keep fixed-point directions near unit length
+//! (this is not fixed: the documented precondition is checked by the fuzz
+//! target instead). Likewise, at the extremes of the float range (found
+//! with |d| ≈ 10²⁵⁷ in a scene 10³⁰⁰ wide), distinct hits in different
+//! cells can round to the same t; the walk may then stop at the first
+//! one found rather than the lower index.
 //!
 //! Rounding is absorbed by two margins that only cost a little extra
 //! work: primitives are assigned to every cell their box overlaps after

@@ -21,15 +21,19 @@
 //! | `sphere.rs` | [`Sphere`] with the stable quadratic of Ray Tracing Gems ch. 7 |
 //! | `triangle.rs` | [`Triangle`], [`Mesh`] and the watertight test of Woop, Benthin and Wald (JCGT 2013) |
 //! | `nearest.rs` | [`Intersect`], [`Object`] (shape + pose), [`nearest_hit`] and the [`Hit`] record |
-//! | `bounds.rs` | [`Aabb`] with a conservative slab test; [`Bounded`] puts a box around any shape |
+//! | `bounds.rs` | [`Aabb`] with a conservative slab test, [`BoundingSphere`] (Ritter) with a conservative scaled test; [`Bounded`] puts either around any shape |
 //! | `grid.rs` | [`Grid`]: uniform grid in caller storage, Amanatides–Woo 3D DDA, [`Mailbox`], early exit |
+//! | `column.rs` | the column caster: [`GridMap`], [`ColumnCamera`], 2D Amanatides–Woo DDA, perpendicular distance, textured walls, drawn into any [`Target`](crate::target::Target) |
 //! | `wide.rs` (private) | overflow-checked dot products and the higher-precision fallbacks |
 //!
 //! # Examples
 //!
-//! One camera for both paths; cast the centre pixel at a posed sphere.
+//! One camera for both paths; cast the centre pixel at a posed sphere
+//! (needs the `sphere` feature).
 //!
 //! ```
+//! # #[cfg(feature = "sphere")]
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
 //! use sightline::camera::{Camera, Projection};
 //! use sightline::math::{Affine3, Vec3};
 //! use sightline::ray::{nearest_hit, Object, RayCamera, Sphere};
@@ -47,7 +51,10 @@
 //! assert_eq!(hit.id, 0);
 //! assert!((hit.point.z + 9.0).abs() < 1e-2); // front of the ball
 //! assert!(hit.object_point.z > 0.99); // object space, for texturing
-//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! # Ok(())
+//! # }
+//! # #[cfg(not(feature = "sphere"))]
+//! # fn main() {}
 //! ```
 //!
 //! # Distances
@@ -64,23 +71,34 @@
 //! checked path of [`Scalar`]) is reported as no hit.
 
 pub mod bounds;
+#[cfg(feature = "column")]
+pub mod column;
+#[cfg(feature = "grid")]
 pub mod grid;
 pub mod nearest;
 pub mod plane;
 pub mod polygon;
 pub mod screen;
 pub mod slab;
+#[cfg(feature = "sphere")]
 pub mod sphere;
 pub mod triangle;
 pub(crate) mod wide;
 
-pub use bounds::{Aabb, AabbError, Bounded};
+pub use bounds::{Aabb, AabbError, Bounded, BoundingSphere, BoundingSphereError, BoundingVolume};
+#[cfg(feature = "column")]
+pub use column::{
+    Column, ColumnCamera, ColumnError, ColumnStyle, GridMap, Side, WallHit, cast_columns,
+    draw_columns, render_columns,
+};
+#[cfg(feature = "grid")]
 pub use grid::{Grid, GridError, Mailbox};
 pub use nearest::{Hit, Intersect, Object, ObjectError, SurfaceHit, nearest_hit};
 pub use plane::{Plane, PlaneError};
 pub use polygon::{Edge2, InclusionTest, Polygon, PolygonError};
 pub use screen::{RayCamera, RayCameraError};
 pub use slab::{SlabError, SlabIndex};
+#[cfg(feature = "sphere")]
 pub use sphere::{Roots, Sphere, SphereError};
 pub use triangle::{Mesh, MeshError, ShearedRay, Triangle, TriangleHit};
 
@@ -168,5 +186,5 @@ impl<S: Scalar> Ray<S> {
     }
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "sphere"))]
 mod tests;

@@ -9,8 +9,10 @@
 //! parameter, so `t` compares across objects unchanged, and the
 //! object-space hit point (for texture coordinates) comes for free.
 
+#[cfg(feature = "sphere")]
+use super::Sphere;
 use super::wide::point_at;
-use super::{Mesh, Plane, Polygon, Ray, SlabIndex, Sphere, Triangle};
+use super::{Mesh, Plane, Polygon, Ray, SlabIndex, Triangle};
 use crate::math::{Affine3, Vec3};
 use crate::scalar::Scalar;
 use crate::solve::SolveError;
@@ -51,6 +53,7 @@ impl<S: Scalar> Intersect<S> for Plane<S> {
     }
 }
 
+#[cfg(feature = "sphere")]
 impl<S: Scalar> Intersect<S> for Sphere<S> {
     fn intersect_ray(&self, ray: &Ray<S>, t_min: S) -> Option<SurfaceHit<S>> {
         let t = self.intersect(ray, t_min)?;

@@ -43,8 +43,14 @@ use core::fmt;
 
 /// A triangle (either winding; two-sided).
 ///
-/// No validation is needed: a degenerate or non-finite triangle is never
-/// hit.
+/// No validation is needed: a non-finite triangle, or one with a repeated
+/// vertex, is never hit. A triangle with three distinct collinear
+/// vertices can be hit by a ray whose line meets their line, in every
+/// scalar type: the sheared vertices are rounded (in fixed point too, the
+/// shear factors are), which can leave it a tiny area (found by the
+/// `ray_triangle` fuzz target). The hit then lies on the segment to
+/// rounding, where its neighbours in a mesh are hit as well, so such a
+/// sliver never opens or closes a gap.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Triangle<S> {
     /// The vertices A, B, C.

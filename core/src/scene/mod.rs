@@ -47,18 +47,25 @@
 //! surface, so their images can be compared pixel by pixel.
 
 mod raster;
+#[cfg(feature = "raycast")]
 mod ray;
 mod shade;
 
 pub mod builtin;
 
 pub use raster::{RasterStats, render_raster};
-pub use ray::{MAX_RAY_OBJECTS, RayScene};
+#[cfg(feature = "raycast")]
+pub use ray::RayScene;
+
+/// How many objects, and how many spheres, the ray path holds (its
+/// per-object state lives in fixed-capacity vectors: no allocation).
+pub const MAX_RAY_OBJECTS: usize = 32;
 pub use shade::quantise_intensity;
 
 use crate::camera::{Camera, CameraError, Projection};
 use crate::math::Vec3;
 use crate::pipeline::PipelineError;
+#[cfg(feature = "raycast")]
 use crate::ray::RayCameraError;
 use crate::scalar::Scalar;
 use crate::transform::{Euler, Pose};
@@ -306,7 +313,15 @@ pub enum SceneError {
     /// The pipeline rejected the projection or depth range.
     Pipeline(PipelineError),
     /// The ray camera could not be built (e.g. a parallel projection).
+    #[cfg(feature = "raycast")]
     RayCamera(RayCameraError),
+    /// The scene needs a stage this build of the crate leaves out: the
+    /// named cargo feature (e.g. a Gouraud material without `gouraud` on
+    /// the raster path, spheres without `sphere` on the ray path).
+    FeatureDisabled {
+        /// The cargo feature to enable.
+        feature: &'static str,
+    },
     /// A triangle index is beyond the mesh's positions.
     IndexOutOfRange {
         /// Object index in the scene.
@@ -355,7 +370,11 @@ impl fmt::Display for SceneError {
                 f.write_str("projection: need 0 < fov_x < pi (or width > 0) and a non-empty image")
             }
             Self::Pipeline(e) => write!(f, "pipeline: {e}"),
+            #[cfg(feature = "raycast")]
             Self::RayCamera(e) => write!(f, "ray camera: {e}"),
+            Self::FeatureDisabled { feature } => {
+                write!(f, "the scene needs the `{feature}` feature of sightline")
+            }
             Self::IndexOutOfRange { object, triangle } => write!(
                 f,
                 "object {object}: triangle {triangle} has a vertex index beyond the positions"
@@ -514,5 +533,17 @@ impl Scene<'_> {
     }
 }
 
-#[cfg(test)]
+// The scene tests compare both paths with every material.
+#[cfg(all(
+    test,
+    feature = "gouraud",
+    feature = "texture",
+    feature = "perspective",
+    feature = "depth",
+    feature = "raycast",
+    feature = "sphere"
+))]
 mod tests;
+// What a build with fewer stages does; runs with any feature set.
+#[cfg(test)]
+mod feature_tests;

@@ -2,12 +2,23 @@
 //! [`Pipeline`] (clip, project, scan-convert) with the scene's material.
 
 use super::shade::{self, Lighting};
-use super::{AUTO_AFFINE_MAX_DEPTH_RATIO, Color, Material, Scene, SceneError, TextureMode, View};
-use crate::pipeline::{Intensity, Pipeline, Uv, UvPerspective, Vertex};
-use crate::raster::{
-    AffineTexture, DepthTest, FillOutcome, Flat, Gouraud, PerspectiveTexture, RepeatPow2, Shade,
-    Texture,
-};
+#[cfg(feature = "perspective")]
+use super::{AUTO_AFFINE_MAX_DEPTH_RATIO, TextureMode};
+use super::{Color, Material, Scene, SceneError, View};
+#[cfg(feature = "gouraud")]
+use crate::pipeline::Intensity;
+#[cfg(feature = "texture")]
+use crate::pipeline::Uv;
+#[cfg(feature = "perspective")]
+use crate::pipeline::UvPerspective;
+use crate::pipeline::{Pipeline, Vertex};
+#[cfg(feature = "gouraud")]
+use crate::raster::Gouraud;
+#[cfg(feature = "perspective")]
+use crate::raster::PerspectiveTexture;
+#[cfg(feature = "texture")]
+use crate::raster::{AffineTexture, RepeatPow2, Texture};
+use crate::raster::{DepthTest, FillOutcome, Flat, Shade};
 use crate::scalar::Scalar;
 use crate::target::Target;
 
@@ -46,8 +57,15 @@ const GUARD: i32 = 16;
 /// Works with any [`Target`], so a [`Band`](crate::target::Band) plus a
 /// band-sized depth buffer renders a strip (call once per band).
 ///
+/// Only the stages compiled in are linked: a flat-only build (no
+/// `gouraud`, `texture` or `perspective` feature) contains no Gouraud or
+/// texture code.
+///
 /// # Errors
-/// [`SceneError`] from [`Scene::validate`] or the pipeline; nothing is
+/// [`SceneError`] from [`Scene::validate`] or the pipeline;
+/// [`SceneError::FeatureDisabled`] for a material whose stage this build
+/// leaves out (`Gouraud` needs `gouraud`; `Texture` needs `texture`, and
+/// its `Perspective` and `Auto` modes need `perspective` too). Nothing is
 /// drawn then.
 pub fn render_raster<S, T, Z>(
     scene: &Scene<'_>,
@@ -61,6 +79,24 @@ where
     Z: DepthTest,
 {
     scene.validate()?;
+    for obj in scene.objects {
+        let missing = match obj.material {
+            Material::Flat(_) => None,
+            Material::Gouraud(_) => (!cfg!(feature = "gouraud")).then_some("gouraud"),
+            Material::Texture { mode, .. } => {
+                if !cfg!(feature = "texture") {
+                    Some("texture")
+                } else if !cfg!(feature = "perspective") && mode != super::TextureMode::Affine {
+                    Some("perspective")
+                } else {
+                    None
+                }
+            }
+        };
+        if let Some(feature) = missing {
+            return Err(SceneError::FeatureDisabled { feature });
+        }
+    }
     let pipe = Pipeline::new(
         view.projection,
         view.width,
@@ -94,6 +130,7 @@ where
                     stats.count(pipe.draw_polygon(target, depth, &Flat(color.scale(q)), &verts));
                 }
             }
+            #[cfg(feature = "gouraud")]
             Material::Gouraud(color) => {
                 let ramp = color.ramp();
                 let shader = Gouraud::new(&ramp);
@@ -103,6 +140,7 @@ where
                     stats.count(pipe.draw_polygon(target, depth, &shader, &verts));
                 }
             }
+            #[cfg(feature = "texture")]
             Material::Texture { texture, mode } => {
                 let w = texture.width();
                 let tex = Texture::new(texture.texels(), w, texture.height(), w as usize)
@@ -112,10 +150,16 @@ where
                     height: texture.height(),
                 };
                 let affine = AffineTexture::<_, RepeatPow2>::new(tex).ok_or(not_pow2)?;
+                #[cfg(feature = "perspective")]
                 let exact = PerspectiveTexture::<_, RepeatPow2, 1>::new(tex).ok_or(not_pow2)?;
+                #[cfg(feature = "perspective")]
                 let ratio = S::from_f32(AUTO_AFFINE_MAX_DEPTH_RATIO);
+                #[cfg(not(feature = "perspective"))]
+                let _ = mode; // Affine (checked above)
                 for &tri in mesh.triangles {
                     let pos = tri.map(view_pos);
+                    let uvs = tri.map(|k| shade::uv::<S>(mesh, k));
+                    #[cfg(feature = "perspective")]
                     let use_affine = match mode {
                         TextureMode::Affine => true,
                         TextureMode::Perspective => false,
@@ -125,19 +169,8 @@ where
                             zmin > S::ZERO && zmax <= zmin * ratio
                         }
                     };
-                    let uvs = tri.map(|k| shade::uv::<S>(mesh, k));
-                    let r = if use_affine {
-                        let verts = [0, 1, 2].map(|c| {
-                            Vertex::new(
-                                pos[c],
-                                Uv {
-                                    u: uvs[c].0,
-                                    v: uvs[c].1,
-                                },
-                            )
-                        });
-                        pipe.draw_polygon(target, depth, &affine, &verts)
-                    } else {
+                    #[cfg(feature = "perspective")]
+                    if !use_affine {
                         let verts = [0, 1, 2].map(|c| {
                             Vertex::new(
                                 pos[c],
@@ -147,11 +180,24 @@ where
                                 },
                             )
                         });
-                        pipe.draw_polygon(target, depth, &exact, &verts)
-                    };
-                    stats.count(r);
+                        stats.count(pipe.draw_polygon(target, depth, &exact, &verts));
+                        continue;
+                    }
+                    let verts = [0, 1, 2].map(|c| {
+                        Vertex::new(
+                            pos[c],
+                            Uv {
+                                u: uvs[c].0,
+                                v: uvs[c].1,
+                            },
+                        )
+                    });
+                    stats.count(pipe.draw_polygon(target, depth, &affine, &verts));
                 }
             }
+            // Refused before drawing (see above).
+            #[allow(unreachable_patterns)]
+            _ => {}
         }
     }
     Ok(stats)

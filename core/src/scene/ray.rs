@@ -3,16 +3,16 @@
 //! with the same material model as the raster path.
 
 use super::shade::{self, Lighting};
-use super::{Color, Material, Scene, SceneError, View, vec3};
+#[cfg(feature = "sphere")]
+use super::vec3;
+use super::{Color, MAX_RAY_OBJECTS, Material, Scene, SceneError, View};
 use crate::math::{Affine3, Mat3, Vec3};
 use crate::raster::{PERSPECTIVE_Q_BITS, SUBPIXEL_BITS, Shade, VARYING_FRAC_BITS};
-use crate::ray::{Aabb, Ray, RayCamera, ShearedRay, Sphere, Triangle};
+#[cfg(feature = "sphere")]
+use crate::ray::Sphere;
+use crate::ray::{Aabb, Ray, RayCamera, ShearedRay, Triangle};
 use crate::scalar::Scalar;
 use crate::target::Target;
-
-/// How many objects, and how many spheres, the ray path holds (its
-/// per-object state lives in fixed-capacity vectors: no allocation).
-pub const MAX_RAY_OBJECTS: usize = 32;
 
 #[derive(Clone, Copy, Debug)]
 struct RayObject<S> {
@@ -34,6 +34,7 @@ pub struct RayScene<'a, S> {
     projection: crate::camera::Projection<S>,
     inv_focus: S,
     objects: heapless::Vec<RayObject<S>, MAX_RAY_OBJECTS>,
+    #[cfg(feature = "sphere")]
     spheres: heapless::Vec<Sphere<S>, MAX_RAY_OBJECTS>,
     light: Lighting<S>,
 }
@@ -44,10 +45,8 @@ enum HitKind<S> {
         tri: usize,
         w: [S; 3],
     },
-    Sphere {
-        sphere: usize,
-        point: Vec3<S>,
-    },
+    #[cfg(feature = "sphere")]
+    Sphere { sphere: usize, point: Vec3<S> },
 }
 
 impl<'a, S: Scalar> RayScene<'a, S> {
@@ -90,7 +89,13 @@ impl<'a, S: Scalar> RayScene<'a, S> {
                 })
                 .map_err(|_| SceneError::TooManyObjects)?;
         }
+        #[cfg(not(feature = "sphere"))]
+        if !scene.spheres.is_empty() {
+            return Err(SceneError::FeatureDisabled { feature: "sphere" });
+        }
+        #[cfg(feature = "sphere")]
         let mut spheres = heapless::Vec::new();
+        #[cfg(feature = "sphere")]
         for (k, s) in scene.spheres.iter().enumerate() {
             let sp = Sphere::new(vec3(s.centre), S::from_f32(s.radius))
                 .map_err(|_| SceneError::BadSphere { sphere: k })?;
@@ -102,6 +107,7 @@ impl<'a, S: Scalar> RayScene<'a, S> {
             projection: view.projection,
             inv_focus: S::ONE / focus,
             objects,
+            #[cfg(feature = "sphere")]
             spheres,
             light: Lighting::new(&scene.light),
         })
@@ -209,6 +215,7 @@ impl<'a, S: Scalar> RayScene<'a, S> {
                 }
             }
         }
+        #[cfg(feature = "sphere")]
         for (k, s) in self.spheres.iter().enumerate() {
             if let Some(t) = s.intersect(ray, S::ZERO) {
                 if best_t.is_none_or(|b| t < b) {
@@ -222,6 +229,7 @@ impl<'a, S: Scalar> RayScene<'a, S> {
         }
         match best {
             None => self.scene.background,
+            #[cfg(feature = "sphere")]
             Some(HitKind::Sphere { sphere, point }) => {
                 let (Some(s), Some(desc)) =
                     (self.spheres.get(sphere), self.scene.spheres.get(sphere))

@@ -2,6 +2,13 @@
 //! same functions, on the same quantised inputs, so flat-shaded triangles
 //! get bit-identical colours from the raster and the ray path.
 
+// Each helper serves the raster path's Gouraud or texture stage, the ray
+// path, or both; a build without some of those stages leaves some unused.
+#![cfg_attr(
+    not(all(feature = "gouraud", feature = "texture", feature = "raycast")),
+    allow(dead_code)
+)]
+
 use super::{Light, MeshData, vec3};
 use crate::math::{Mat3, Vec3};
 use crate::scalar::Scalar;

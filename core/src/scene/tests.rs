@@ -33,6 +33,7 @@ fn builtin_scenes_validate() {
         s.validate().unwrap();
         assert_eq!(builtin::by_name(s.name).map(|f| f.name), Some(s.name));
     }
+    #[cfg(feature = "column")]
     assert_eq!(
         builtin::COLUMN_MAP.cells.len(),
         builtin::COLUMN_MAP.width as usize * builtin::COLUMN_MAP.height as usize

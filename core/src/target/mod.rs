@@ -119,5 +119,5 @@ impl<T: Target + ?Sized> Target for &mut T {
     }
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "gouraud"))]
 mod tests;

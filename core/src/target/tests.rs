@@ -187,3 +187,29 @@ fn rgb565_and_gray8_framebuffers() {
     assert_eq!(fb.pixel(2, 1), Some(Gray8::new(0)));
     assert_eq!(Gray8::new(255).ramp()[128], Gray8::new(128));
 }
+
+#[test]
+fn fill_solid_writes_exactly_the_clipped_span_for_every_length() {
+    // The unrolled fill (eight stores per step, then the remainder) must
+    // write exactly [x, x + len) ∩ [0, w) of the row, for spans shorter
+    // than, equal to and longer than a multiple of eight, and leave the
+    // stride padding and the other rows alone.
+    let (w, h, stride) = (37u16, 3u16, 40usize);
+    for x in -9..40 {
+        for len in 0..50u32 {
+            let mut buf = vec![0u16; stride * h as usize];
+            let mut fb = Framebuffer::new(&mut buf, w, h, stride).unwrap();
+            fb.fill_solid(1, x, len, 7);
+            for (i, &p) in buf.iter().enumerate() {
+                let (row, col) = (i / stride, (i % stride) as i32);
+                let inside =
+                    row == 1 && col < w as i32 && col >= x && (col as i64) < x as i64 + len as i64;
+                assert_eq!(
+                    p,
+                    if inside { 7 } else { 0 },
+                    "x {x} len {len} at {row},{col}"
+                );
+            }
+        }
+    }
+}

@@ -94,24 +94,24 @@ fn camera_rays_match_projection<S: Scalar>() {
     for _ in 0..20 {
         let cam = Camera::from_angles(
             v3(
-                rng.uniform(-2.0, 2.0),
-                rng.uniform(-2.0, 2.0),
-                rng.uniform(-2.0, 2.0),
+                rng.range(-2.0, 2.0),
+                rng.range(-2.0, 2.0),
+                rng.range(-2.0, 2.0),
             ),
             Euler::new(
-                S::from_f64(rng.uniform(-1.0, 1.0)),
-                S::from_f64(rng.uniform(-1.0, 1.0)),
-                S::from_f64(rng.uniform(-3.0, 3.0)),
+                S::from_f64(rng.range(-1.0, 1.0)),
+                S::from_f64(rng.range(-1.0, 1.0)),
+                S::from_f64(rng.range(-3.0, 3.0)),
             ),
         );
         let rc = RayCamera::from_camera(&cam, &proj, w, h).unwrap();
         for _ in 0..10 {
             let (i, j) = (
-                rng.range(0, w as i64 - 1) as u16,
-                rng.range(0, h as i64 - 1) as u16,
+                rng.int(0, w as i64 - 1) as u16,
+                rng.int(0, h as i64 - 1) as u16,
             );
             let ray = rc.pixel_ray(i, j).unwrap();
-            let k = S::from_f64(rng.uniform(0.05, 0.3));
+            let k = S::from_f64(rng.range(0.05, 0.3));
             let world = ray.at(k);
             let view = cam.world_to_view().transform_point3(world);
             let (s, _) = proj.project(view).unwrap();
@@ -190,7 +190,7 @@ fn extreme_inputs_never_panic_or_nan<S: Scalar>() {
         vals.push(S::from_f64(1e-40));
     }
     let mut rng = Rng::new(404);
-    let pick = |rng: &mut Rng| vals[rng.range(0, vals.len() as i64 - 1) as usize];
+    let pick = |rng: &mut Rng| vals[rng.int(0, vals.len() as i64 - 1) as usize];
     let ok = |t: Option<S>| {
         if let Some(t) = t {
             assert!(t.is_finite() && t > S::ZERO, "{} bad t {t:?}", S::NAME);

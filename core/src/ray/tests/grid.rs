@@ -48,25 +48,20 @@ fn bounded_equals_unbounded<S: Scalar>() {
     let mut rng = Rng::new(3);
     for _ in 0..2000 {
         let c = v3::<S>(
-            rng.uniform(-5.0, 5.0),
-            rng.uniform(-5.0, 5.0),
-            rng.uniform(-5.0, 5.0),
+            rng.range(-5.0, 5.0),
+            rng.range(-5.0, 5.0),
+            rng.range(-5.0, 5.0),
         );
-        let r = S::from_f64(rng.uniform(0.1, 3.0));
+        let r = S::from_f64(rng.range(0.1, 3.0));
         let s = Sphere::new(c, r).unwrap();
-        let b = Bounded {
-            bounds: Aabb::around_sphere(c, r),
-            shape: s,
-        };
+        let b = Bounded::new(Aabb::around_sphere(c, r), s);
         let q = v3::<S>(
-            rng.uniform(-9.0, 9.0),
-            rng.uniform(-9.0, 9.0),
-            rng.uniform(-9.0, 9.0),
+            rng.range(-9.0, 9.0),
+            rng.range(-9.0, 9.0),
+            rng.range(-9.0, 9.0),
         );
-        let Ok(ray) = Ray::through(
-            q,
-            c + v3(rng.uniform(-3.0, 3.0), rng.uniform(-3.0, 3.0), 0.0),
-        ) else {
+        let Ok(ray) = Ray::through(q, c + v3(rng.range(-3.0, 3.0), rng.range(-3.0, 3.0), 0.0))
+        else {
             continue;
         };
         assert_eq!(
@@ -111,25 +106,25 @@ fn grid_equals_brute_force<S: Scalar>() {
         let n = 20 + 40 * scene;
         for i in 0..n {
             let c = v3::<S>(
-                rng.uniform(-10.0, 10.0),
-                rng.uniform(-10.0, 10.0),
-                rng.uniform(-10.0, 10.0),
+                rng.range(-10.0, 10.0),
+                rng.range(-10.0, 10.0),
+                rng.range(-10.0, 10.0),
             );
             if i % 7 == 3 {
                 // An exact duplicate of the previous primitive: ties.
                 prims.push(prims[i - 1]);
                 boxes.push(boxes[i - 1]);
             } else if i % 2 == 0 {
-                let r = S::from_f64(rng.uniform(0.2, 2.5));
+                let r = S::from_f64(rng.range(0.2, 2.5));
                 prims.push(Prim::Sphere(Sphere::new(c, r).unwrap()));
                 boxes.push(Aabb::around_sphere(c, r));
             } else {
                 let mut p = [c; 3];
                 for v in p.iter_mut().skip(1) {
                     *v = c + v3(
-                        rng.uniform(-4.0, 4.0),
-                        rng.uniform(-4.0, 4.0),
-                        rng.uniform(-4.0, 4.0),
+                        rng.range(-4.0, 4.0),
+                        rng.range(-4.0, 4.0),
+                        rng.range(-4.0, 4.0),
                     );
                 }
                 prims.push(Prim::Triangle(Triangle::new(p[0], p[1], p[2])));
@@ -151,14 +146,14 @@ fn grid_equals_brute_force<S: Scalar>() {
             let mut hits = 0;
             for _ in 0..400 {
                 let q = v3::<S>(
-                    rng.uniform(-14.0, 14.0),
-                    rng.uniform(-14.0, 14.0),
-                    rng.uniform(-14.0, 14.0),
+                    rng.range(-14.0, 14.0),
+                    rng.range(-14.0, 14.0),
+                    rng.range(-14.0, 14.0),
                 );
                 let target = v3::<S>(
-                    rng.uniform(-8.0, 8.0),
-                    rng.uniform(-8.0, 8.0),
-                    rng.uniform(-8.0, 8.0),
+                    rng.range(-8.0, 8.0),
+                    rng.range(-8.0, 8.0),
+                    rng.range(-8.0, 8.0),
                 );
                 let Ok(ray) = Ray::through(q, target) else {
                     continue;

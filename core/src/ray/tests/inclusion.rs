@@ -97,8 +97,8 @@ fn star(rng: &mut Rng, n: usize, r: i64) -> Vec<P> {
     loop {
         let mut pts: Vec<P> = (0..n)
             .map(|_| {
-                let a = rng.uniform(0.0, core::f64::consts::TAU);
-                let rad = rng.uniform(0.2, 1.0) * (r - 2) as f64 / 2.0;
+                let a = rng.range(0.0, core::f64::consts::TAU);
+                let rad = rng.range(0.2, 1.0) * (r - 2) as f64 / 2.0;
                 (2 * (rad * a.cos()) as i64, 2 * (rad * a.sin()) as i64)
             })
             .filter(|&p| p != (0, 0))
@@ -123,8 +123,8 @@ fn convex(rng: &mut Rng, n: usize, r: i64) -> Vec<P> {
     loop {
         let mut pts: Vec<P> = (0..n)
             .map(|_| {
-                let a = rng.uniform(0.0, core::f64::consts::TAU);
-                let rad = rng.uniform(0.9, 1.0) * (r - 2) as f64 / 2.0;
+                let a = rng.range(0.0, core::f64::consts::TAU);
+                let rad = rng.range(0.9, 1.0) * (r - 2) as f64 / 2.0;
                 (2 * (rad * a.cos()) as i64, 2 * (rad * a.sin()) as i64)
             })
             .collect();
@@ -180,7 +180,7 @@ fn convex_by_edges(rng: &mut Rng, n: usize, r: i64) -> Vec<P> {
     // A random subset of about n/2 directions (at least two, not parallel).
     let keep = (n / 2).clamp(2, dirs.len());
     for i in 0..dirs.len() {
-        let j = rng.range(i as i64, dirs.len() as i64 - 1) as usize;
+        let j = rng.int(i as i64, dirs.len() as i64 - 1) as usize;
         dirs.swap(i, j);
     }
     dirs.truncate(keep);
@@ -222,11 +222,11 @@ fn with_midpoints(rng: &mut Rng, pts: Vec<P>) -> Vec<P> {
     for i in 0..n {
         out.push(pts[i]);
         let b = pts[(i + 1) % n];
-        if rng.range(0, 3) == 0 {
+        if rng.int(0, 3) == 0 {
             out.push(((pts[i].0 + b.0) / 2, (pts[i].1 + b.1) / 2));
         }
     }
-    if rng.range(0, 1) == 0 {
+    if rng.int(0, 1) == 0 {
         out.reverse();
     }
     assert!(out.len() <= CAP);
@@ -241,7 +241,7 @@ fn probe_points(rng: &mut Rng, poly: &[P], r: i64, random: usize) -> Vec<P> {
     // Big polygons: probe about 300 edges (from a random start), which
     // keeps the debug-build test time down without losing coverage.
     let stride = n.div_ceil(300);
-    let start = rng.range(0, stride as i64 - 1) as usize;
+    let start = rng.int(0, stride as i64 - 1) as usize;
     for i in (start..n).step_by(stride) {
         let (a, b) = (poly[i], poly[(i + 1) % n]);
         for (dx, dy) in [(0, 0), (1, 0), (-1, 0), (0, 1), (0, -1), (1, 1), (-1, -1)] {
@@ -250,12 +250,12 @@ fn probe_points(rng: &mut Rng, poly: &[P], r: i64, random: usize) -> Vec<P> {
         let g = gcd((b.0 - a.0).abs(), (b.1 - a.1).abs()).max(1);
         let (sx, sy) = ((b.0 - a.0) / g, (b.1 - a.1) / g);
         for _ in 0..3 {
-            let k = rng.range(0, g);
+            let k = rng.int(0, g);
             out.push((a.0 + k * sx, a.1 + k * sy));
         }
     }
     for _ in 0..random {
-        out.push((rng.range(-r, r), rng.range(-r, r)));
+        out.push((rng.int(-r, r), rng.int(-r, r)));
     }
     out.retain(|p| p.0.abs() <= r && p.1.abs() <= r);
     out
@@ -303,10 +303,10 @@ fn check_polygon<S: Scalar>(rng: &mut Rng, pts: &[P], r: i64, axis: usize, rando
 }
 
 fn sizes(rng: &mut Rng, max: usize) -> usize {
-    match rng.range(0, 9) {
-        0 => rng.range(3, max as i64) as usize,
-        1 => rng.range(3, 60) as usize,
-        _ => rng.range(3, 12) as usize,
+    match rng.int(0, 9) {
+        0 => rng.int(3, max as i64) as usize,
+        1 => rng.int(3, 60) as usize,
+        _ => rng.int(3, 12) as usize,
     }
 }
 
@@ -412,7 +412,7 @@ fn shared_edges_fan_partition<S: Scalar>() {
     let mut rng = Rng::new(77);
     let r = grid_limit::<S>().min(1 << 12);
     for case in 0..30 {
-        let n = rng.range(3, 24) as usize;
+        let n = rng.int(3, 24) as usize;
         let mut pts = star(&mut rng, n, r);
         // Keep counter-clockwise so the triangles (0, a, b) are too.
         if (0..pts.len())
@@ -462,14 +462,14 @@ fn shared_edge_diagonal_split<S: Scalar>() {
     let mut rng = Rng::new(99);
     let r = grid_limit::<S>().min(1 << 12);
     for case in 0..40 {
-        let n = rng.range(4, 40) as usize;
+        let n = rng.int(4, 40) as usize;
         let pts = convex(&mut rng, n, r);
         let m = pts.len();
         if m < 4 {
             continue;
         }
-        let i = rng.range(0, m as i64 - 1) as usize;
-        let j = (i + rng.range(2, m as i64 - 2) as usize) % m;
+        let i = rng.int(0, m as i64 - 1) as usize;
+        let j = (i + rng.int(2, m as i64 - 2) as usize) % m;
         let (lo, hi) = (i.min(j), i.max(j));
         let p1: Vec<P> = pts[lo..=hi].to_vec();
         let mut p2: Vec<P> = pts[hi..].to_vec();
@@ -606,9 +606,9 @@ fn edge_equation_coefficients<S: Scalar>() {
     };
     for _ in 0..500 {
         let pts = [
-            (rng.range(-r, r), rng.range(-r, r)),
-            (rng.range(-r, r), rng.range(-r, r)),
-            (rng.range(-r, r), rng.range(-r, r)),
+            (rng.int(-r, r), rng.int(-r, r)),
+            (rng.int(-r, r), rng.int(-r, r)),
+            (rng.int(-r, r), rng.int(-r, r)),
         ];
         let Ok(poly) = Polygon::<S, 3>::new(&[
             Vec3::new(pt::<S>(pts[0]).x, pt::<S>(pts[0]).y, S::ZERO),
@@ -617,7 +617,7 @@ fn edge_equation_coefficients<S: Scalar>() {
         ]) else {
             continue;
         };
-        let p = (rng.range(-r, r), rng.range(-r, r));
+        let p = (rng.int(-r, r), rng.int(-r, r));
         for e in poly.edges() {
             let (a, b, c) = e.coefficients().unwrap();
             let q = pt::<S>(p);
@@ -658,14 +658,14 @@ fn posed_polygons_hit<S: Scalar>() {
     for _ in 0..100 {
         let pose = Pose::new(
             super::v3::<S>(
-                rng.uniform(-4.0, 4.0),
-                rng.uniform(-4.0, 4.0),
-                rng.uniform(-4.0, 4.0),
+                rng.range(-4.0, 4.0),
+                rng.range(-4.0, 4.0),
+                rng.range(-4.0, 4.0),
             ),
             Euler::new(
-                S::from_f64(rng.uniform(-3.0, 3.0)),
-                S::from_f64(rng.uniform(-1.5, 1.5)),
-                S::from_f64(rng.uniform(-3.0, 3.0)),
+                S::from_f64(rng.range(-3.0, 3.0)),
+                S::from_f64(rng.range(-1.5, 1.5)),
+                S::from_f64(rng.range(-3.0, 3.0)),
             ),
         );
         let m = pose.object_to_world();

@@ -3,6 +3,10 @@
 //! type's `EPSILON`.
 
 mod basics;
+mod bounding_sphere;
+#[cfg(feature = "column")]
+mod column;
+#[cfg(feature = "grid")]
 mod grid;
 mod inclusion;
 mod nearest;
@@ -29,33 +33,7 @@ macro_rules! per_scalar {
 }
 pub(crate) use per_scalar;
 
-/// A small seeded PRNG (SplitMix64), so failures reproduce exactly.
-pub(crate) struct Rng(u64);
-
-impl Rng {
-    pub(crate) fn new(seed: u64) -> Self {
-        Self(seed)
-    }
-    pub(crate) fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    /// Uniform in `lo..=hi`.
-    pub(crate) fn range(&mut self, lo: i64, hi: i64) -> i64 {
-        lo + (self.next_u64() % ((hi - lo + 1) as u64)) as i64
-    }
-    /// Uniform in `[0, 1)`.
-    pub(crate) fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-    /// Uniform in `[lo, hi)`.
-    pub(crate) fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-}
+pub(crate) use crate::test_util::Rng;
 
 /// Which family a scalar belongs to, for choosing exact ranges.
 pub(crate) fn is_f64<S: Scalar>() -> bool {

@@ -90,21 +90,21 @@ fn random_against_reference<S: Scalar>() {
     let mut worst: f64 = 0.0;
     for _ in 0..3000 {
         let c = v3::<S>(
-            rng.uniform(-span, span),
-            rng.uniform(-span, span),
-            rng.uniform(-span, span),
+            rng.range(-span, span),
+            rng.range(-span, span),
+            rng.range(-span, span),
         );
-        let r = S::from_f64(rng.uniform(0.1, span / 2.0));
+        let r = S::from_f64(rng.range(0.1, span / 2.0));
         let q = v3::<S>(
-            rng.uniform(-span, span),
-            rng.uniform(-span, span),
-            rng.uniform(-span, span),
+            rng.range(-span, span),
+            rng.range(-span, span),
+            rng.range(-span, span),
         );
         // Aim near the sphere so most rays hit.
         let target = c + v3(
-            rng.uniform(-1.2, 1.2) * r.to_f64(),
-            rng.uniform(-1.2, 1.2) * r.to_f64(),
-            rng.uniform(-1.2, 1.2) * r.to_f64(),
+            rng.range(-1.2, 1.2) * r.to_f64(),
+            rng.range(-1.2, 1.2) * r.to_f64(),
+            rng.range(-1.2, 1.2) * r.to_f64(),
         );
         let Some(d) = crate::ray::wide::sub3(target, q) else {
             continue;
@@ -255,7 +255,82 @@ fn tangent_miss_and_bad_input<S: Scalar>() {
     let _ = far.intersect(&ray, S::ZERO);
 }
 
+/// Fuzz regression (`ray_sphere`): a huge sphere around an origin, hit
+/// along a long direction. The far root is `t = 2050` (32 800 / 16), but
+/// `t·s` (s = the radius, 32 768) overflows I16F16 before the division by
+/// |d|; it was reported saturated as `S::MAX`.
+fn long_direction_does_not_saturate_a_representable_root<S: Scalar>() {
+    let r = if S::IS_FLOAT {
+        32768.0
+    } else {
+        S::MAX.to_f64()
+    };
+    let s = Sphere::new(v3::<S>(32.0, 0.5, 0.0), S::from_f64(r)).unwrap();
+    let ray = Ray::new(v3(0.0, 0.0, -8.0), v3(16.0, 0.0, 0.0)).unwrap();
+    let Roots::Two(t0, t1) = s.roots(&ray) else {
+        panic!("the origin is inside: two roots");
+    };
+    // Reference: the line y = 0, z = −8 meets the sphere at
+    // x = 32 ± √(r² − 0.25 − 64).
+    let h = (r * r - 0.25 - 64.0).sqrt();
+    let want = [(32.0 - h) / 16.0, (32.0 + h) / 16.0];
+    for (got, want) in [t0, t1].into_iter().zip(want) {
+        let got = got.to_f64();
+        assert!(
+            (got - want).abs() < 0.05,
+            "{}: root {got}, want {want}",
+            S::NAME
+        );
+    }
+    // The second fuzz input: |d| ≈ r ≈ 32 768 and a root near 1, where
+    // dividing by |d| before multiplying by s lost all but two raw bits
+    // in fixed point (root 1 instead of 1.0029).
+    let s = Sphere::new(v3::<S>(58.0, 0.25, 0.0), S::from_f64(r)).unwrap();
+    let ray = Ray::new(v3(-38.0, 29.0, 59.5), v3(r, -48.0, 0.0)).unwrap();
+    let (q, d) = ([-38.0, 29.0, 59.5], [r, -48.0, 0.0]);
+    let fv = [q[0] - 58.0, q[1] - 0.25, q[2]];
+    let a = d[0] * d[0] + d[1] * d[1];
+    let b = fv[0] * d[0] + fv[1] * d[1];
+    let c = fv[0] * fv[0] + fv[1] * fv[1] + fv[2] * fv[2] - r * r;
+    let far = (-b + (b * b - a * c).sqrt()) / a;
+    let t = s.intersect(&ray, S::ZERO).unwrap().to_f64();
+    assert!((t - far).abs() < 2e-4, "{}: root {t}, want {far}", S::NAME);
+}
+
+/// Fuzz regression (`grid`): a direction of 3.3·10⁻³¹² puts both roots
+/// beyond f64's range; `roots` saturates them to MAX, and `intersect`
+/// reported a hit at t = MAX that the grid could not reproduce. Now no
+/// hit; a root in range is still found.
+fn roots_beyond_the_range_are_not_hits<S: Scalar>() {
+    let s = Sphere::new(v3::<S>(0.0, 0.0, -0.03125), S::from_f64(0.0234375)).unwrap();
+    let tiny = if S::IS_FLOAT {
+        S::from_f64(f64::from_bits(674_309_905_821))
+    } else {
+        S::EPSILON
+    };
+    let tiny = if S::EPSILON.to_f64() > 1e-10 && S::IS_FLOAT {
+        S::from_f64(1e-44)
+    } else {
+        tiny
+    };
+    let ray = Ray::new(
+        Vec3::new(S::ZERO, S::ZERO, tiny),
+        Vec3::new(S::ZERO, S::ZERO, -tiny),
+    )
+    .unwrap();
+    if let Roots::Two(_, t1) = s.roots(&ray) {
+        if t1 == S::MAX {
+            assert_eq!(s.intersect(&ray, S::ZERO), None, "{}", S::NAME);
+        }
+    }
+    let unit = Ray::new(v3(0.0, 0.0, 1.0), v3(0.0, 0.0, -1.0)).unwrap();
+    let t = s.intersect(&unit, S::ZERO).unwrap().to_f64();
+    assert!((t - (1.0 + 0.03125 - 0.0234375)).abs() < 1e-3, "{t}");
+}
+
 per_scalar!(
+    roots_beyond_the_range_are_not_hits,
+    long_direction_does_not_saturate_a_representable_root,
     random_against_reference,
     grazing_rays,
     distant_small_and_huge,

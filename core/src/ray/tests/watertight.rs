@@ -47,6 +47,9 @@ struct Leaks {
     polygon_at_vertices: usize,
     random_rays: usize,
     random_polygon: usize,
+    /// Leaks of the polygon method with the half-plane and the fan
+    /// inclusion test (`polygon` is the crossing test).
+    by_test: [usize; 2],
 }
 
 /// `exact`: no rotation, integer scale and offset, so the edge targets are
@@ -70,23 +73,23 @@ fn run_mesh<S: Scalar>(
         let pose = if exact {
             Pose::new(
                 v3::<S>(
-                    rng.range(-3, 3) as f64,
-                    rng.range(-3, 3) as f64,
-                    rng.range(-3, 3) as f64,
+                    rng.int(-3, 3) as f64,
+                    rng.int(-3, 3) as f64,
+                    rng.int(-3, 3) as f64,
                 ),
                 Euler::ZERO,
             )
         } else {
             Pose::new(
                 v3::<S>(
-                    rng.uniform(-3.0, 3.0),
-                    rng.uniform(-3.0, 3.0),
-                    rng.uniform(-3.0, 3.0),
+                    rng.range(-3.0, 3.0),
+                    rng.range(-3.0, 3.0),
+                    rng.range(-3.0, 3.0),
                 ),
                 Euler::new(
-                    S::from_f64(rng.uniform(-3.0, 3.0)),
-                    S::from_f64(rng.uniform(-1.5, 1.5)),
-                    S::from_f64(rng.uniform(-3.0, 3.0)),
+                    S::from_f64(rng.range(-3.0, 3.0)),
+                    S::from_f64(rng.range(-1.5, 1.5)),
+                    S::from_f64(rng.range(-3.0, 3.0)),
                 ),
             )
         };
@@ -139,15 +142,12 @@ fn run_mesh<S: Scalar>(
         // Control: random directions from inside, not aimed at edges.
         for _ in 0..400 {
             let o = 0.3 * scale;
-            let origin = m.transform_point3(v3(
-                rng.uniform(-o, o),
-                rng.uniform(-o, o),
-                rng.uniform(-o, o),
-            ));
+            let origin =
+                m.transform_point3(v3(rng.range(-o, o), rng.range(-o, o), rng.range(-o, o)));
             let d = v3::<S>(
-                rng.uniform(-1.0, 1.0),
-                rng.uniform(-1.0, 1.0),
-                rng.uniform(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
             );
             let Ok(ray) = Ray::new(origin, d) else {
                 continue;
@@ -163,11 +163,7 @@ fn run_mesh<S: Scalar>(
                 centre
             } else {
                 let o = 0.3 * scale;
-                m.transform_point3(v3(
-                    rng.uniform(-o, o),
-                    rng.uniform(-o, o),
-                    rng.uniform(-o, o),
-                ))
+                m.transform_point3(v3(rng.range(-o, o), rng.range(-o, o), rng.range(-o, o)))
             };
             let Ok(ray) = Ray::through(origin, target) else {
                 continue;
@@ -179,6 +175,17 @@ fn run_mesh<S: Scalar>(
             if !polys.iter().any(|p| p.intersect(&ray, S::ZERO).is_some()) {
                 out.polygon += 1;
                 out.polygon_at_vertices += at_vertex as usize;
+            }
+            for (k, test) in [InclusionTest::HalfPlane, InclusionTest::Fan]
+                .into_iter()
+                .enumerate()
+            {
+                if !polys
+                    .iter()
+                    .any(|p| p.clone().with_test(test).intersect(&ray, S::ZERO).is_some())
+                {
+                    out.by_test[k] += 1;
+                }
             }
         }
     }
@@ -207,6 +214,7 @@ fn closed_meshes_do_not_leak<S: Scalar>() {
         polygon_at_vertices: 0,
         random_rays: 0,
         random_polygon: 0,
+        by_test: [0; 2],
     };
     for exact in [false, false, false, true] {
         run_mesh::<S>(&mut rng, &octa, &OCTAHEDRON, exact, &mut leaks);
@@ -221,6 +229,16 @@ fn closed_meshes_do_not_leak<S: Scalar>() {
         leaks.polygon,
         100.0 * leaks.polygon as f64 / leaks.rays as f64,
         leaks.polygon_at_vertices,
+    );
+    println!(
+        "{}: same rays, polygon leaks by inclusion test: crossing {} ({:.3}%), half-plane {} ({:.3}%), fan {} ({:.3}%)",
+        S::NAME,
+        leaks.polygon,
+        100.0 * leaks.polygon as f64 / leaks.rays as f64,
+        leaks.by_test[0],
+        100.0 * leaks.by_test[0] as f64 / leaks.rays as f64,
+        leaks.by_test[1],
+        100.0 * leaks.by_test[1] as f64 / leaks.rays as f64,
     );
     println!(
         "{}: control, {} random-direction rays from inside: watertight leaks 0, polygon leaks {}",
@@ -291,7 +309,35 @@ fn mesh_validation_and_ties<S: Scalar>() {
 }
 
 per_scalar!(
+    degenerate_triangles_hit_only_on_their_segment,
     closed_meshes_do_not_leak,
     triangle_basics,
     mesh_validation_and_ties,
 );
+
+/// Fuzz regression (`ray_triangle`): a triangle with three distinct
+/// collinear vertices on the line x = y = 51.5, and a ray through a point
+/// of that line. It may report a grazing hit (the rounded sheared vertices
+/// have a tiny area), but only on the segment; a repeated vertex is never
+/// hit.
+fn degenerate_triangles_hit_only_on_their_segment<S: Scalar>() {
+    let e = 0.125;
+    let p = |x: f64, y: f64, z: f64| v3::<S>(x * e, y * e, z * e);
+    let (a, b, c) = (
+        p(412.0, 412.0, 168.0),
+        p(412.0, 412.0, 452.0),
+        p(412.0, 412.0, 412.0),
+    );
+    let q = p(-420.0, -416.0, -416.0);
+    let target = p(412.0, 412.0, 422.0);
+    let ray = Ray::through(q, target).unwrap();
+    if let Some(h) = Triangle::new(a, b, c).intersect(&ray, S::ZERO) {
+        let x = ray.at(h.t);
+        // On the segment x = y = 51.5, z in [21, 56.5], to rounding.
+        let tol = if S::IS_FLOAT { 1e-3 } else { 0.05 };
+        assert!((x.x.to_f64() - 51.5).abs() < tol && (x.y.to_f64() - 51.5).abs() < tol);
+        assert!(x.z.to_f64() > 21.0 - tol && x.z.to_f64() < 56.5 + tol);
+    }
+    let d = p(412.0, 412.0, 412.0);
+    assert_eq!(Triangle::new(c, b, d).intersect(&ray, S::ZERO), None);
+}

@@ -9,8 +9,8 @@
 //! | [`CORRIDOR_AFFINE`] | the same with affine mapping: the checks bend at the triangles' diagonals | both |
 //! | [`SPHERES`] | three spheres on a flat floor polygon (camera: orthonormal) | ray (the raster path draws the floor only) |
 //!
-//! [`COLUMN_MAP`] is a grid map for the column caster (`ray::column`),
-//! which is being written on another branch; it is data only here.
+//! [`COLUMN_MAP`] is a grid map for the column caster
+//! ([`crate::ray::column`]); the simulator renders it as the scene `maze`.
 
 mod bunny_data;
 
@@ -380,25 +380,12 @@ pub static SPHERES: Scene<'static> = Scene {
 
 // ---------------------------------------------------------------- column map
 
-/// A grid map for a column caster: `cells` row-major, `b'#'` wall,
-/// `b'.'` free; the viewer starts at `start` (cell units) facing
-/// `heading` radians (0 = +x, counter-clockwise seen from above).
-#[derive(Clone, Copy, Debug)]
-pub struct GridMap<'a> {
-    /// Cells across.
-    pub width: u16,
-    /// Cells down.
-    pub height: u16,
-    /// `width·height` cells.
-    pub cells: &'a [u8],
-    /// Viewer position in cell units.
-    pub start: [f32; 2],
-    /// Viewer heading in radians.
-    pub heading: f32,
-}
+#[cfg(feature = "column")]
+pub use crate::ray::column::GridMap;
 
-/// A 16×12 maze for the column caster (rendering it is left to the
-/// integrator of `ray::column`).
+/// A 16×12 maze for the column caster ([`crate::ray::column`]), enclosed
+/// by walls; the viewer starts in the top-left room.
+#[cfg(feature = "column")]
 pub static COLUMN_MAP: GridMap<'static> = GridMap {
     width: 16,
     height: 12,

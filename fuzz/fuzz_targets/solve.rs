@@ -59,12 +59,23 @@ fn compensated_residual(a: &[Vec<f64>], x: &[f64], b: f64, i: usize) -> f64 {
 }
 
 fn check<T: Scalar, const N: usize, const M: usize>(vals: &[f64]) {
-    let a: [[T; N]; N] = core::array::from_fn(|i| core::array::from_fn(|j| T::from_f64(vals[i * N + j])));
-    let b: [[T; M]; N] = core::array::from_fn(|i| core::array::from_fn(|j| T::from_f64(vals[N * N + i * M + j])));
-    let finite = a.iter().flatten().chain(b.iter().flatten()).all(|v| v.is_finite());
+    let a: [[T; N]; N] =
+        core::array::from_fn(|i| core::array::from_fn(|j| T::from_f64(vals[i * N + j])));
+    let b: [[T; M]; N] =
+        core::array::from_fn(|i| core::array::from_fn(|j| T::from_f64(vals[N * N + i * M + j])));
+    let finite = a
+        .iter()
+        .flatten()
+        .chain(b.iter().flatten())
+        .all(|v| v.is_finite());
     let result = solve(&a, &b);
     if !finite {
-        assert_eq!(result.unwrap_err(), SolveError::NonFinite, "{} non-finite input", T::NAME);
+        assert_eq!(
+            result.unwrap_err(),
+            SolveError::NonFinite,
+            "{} non-finite input",
+            T::NAME
+        );
         return;
     }
     let sol = match result {
@@ -77,22 +88,42 @@ fn check<T: Scalar, const N: usize, const M: usize>(vals: &[f64]) {
         Err(SolveError::IllConditioned { rcond }) => {
             // The error carries rcond rounded to f32: allow that rounding.
             let limit = T::EPSILON.to_f64() * (1.0 + f32::EPSILON as f64);
-            assert!(!(rcond as f64 > limit), "{}: rcond {rcond} reported ill-conditioned", T::NAME);
+            assert!(
+                !(rcond as f64 > limit),
+                "{}: rcond {rcond} reported ill-conditioned",
+                T::NAME
+            );
             return;
         }
         Err(SolveError::Overflow) => return,
     };
     let d = sol.diagnostics;
-    assert!(d.rcond >= T::EPSILON && d.rcond <= T::ONE, "{}: rcond {:?}", T::NAME, d.rcond);
+    assert!(
+        d.rcond >= T::EPSILON && d.rcond <= T::ONE,
+        "{}: rcond {:?}",
+        T::NAME,
+        d.rcond
+    );
     let growth = d.growth.to_f64();
     assert!(growth >= 1.0 - 1e-3, "{}: growth {growth}", T::NAME);
-    let a64: Vec<Vec<f64>> = a.iter().map(|r| r.iter().map(|v| v.to_f64()).collect()).collect();
+    let a64: Vec<Vec<f64>> = a
+        .iter()
+        .map(|r| r.iter().map(|v| v.to_f64()).collect())
+        .collect();
     let max_a = a64.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
-    let norm_a = (0..N).map(|j| (0..N).map(|i| a64[i][j].abs()).sum::<f64>()).fold(0.0, f64::max);
+    let norm_a = (0..N)
+        .map(|j| (0..N).map(|i| a64[i][j].abs()).sum::<f64>())
+        .fold(0.0, f64::max);
     for j in 0..M {
         let x: Vec<f64> = (0..N).map(|i| sol.x[i][j].to_f64()).collect();
-        assert!(x.iter().all(|v| v.is_finite()), "{}: non-finite solution", T::NAME);
-        let r: Vec<f64> = (0..N).map(|i| compensated_residual(&a64, &x, b[i][j].to_f64(), i)).collect();
+        assert!(
+            x.iter().all(|v| v.is_finite()),
+            "{}: non-finite solution",
+            T::NAME
+        );
+        let r: Vec<f64> = (0..N)
+            .map(|i| compensated_residual(&a64, &x, b[i][j].to_f64(), i))
+            .collect();
         if T::IS_FLOAT {
             let u = T::EPSILON.to_f64() / 2.0;
             let xn: f64 = x.iter().map(|v| v.abs()).sum();
@@ -121,7 +152,11 @@ fn check<T: Scalar, const N: usize, const M: usize>(vals: &[f64]) {
             let max_x = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             let rmax = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             let bound = fixed_residual_bound(N, growth, max_a, max_x, T::EPSILON.to_f64());
-            assert!(rmax <= bound, "{} n={N}: residual {rmax} > bound {bound}", T::NAME);
+            assert!(
+                rmax <= bound,
+                "{} n={N}: residual {rmax} > bound {bound}",
+                T::NAME
+            );
         }
     }
 }

@@ -7,6 +7,7 @@
 
 pub mod image;
 pub mod render;
+pub mod report;
 pub mod scene_file;
 
 use clap::{Parser, Subcommand};
@@ -70,6 +71,17 @@ pub enum Command {
         /// Diff image file (default: SCENE-diff.png).
         #[arg(long)]
         out: Option<PathBuf>,
+    },
+    /// Measure error against run time for every numeric representation
+    /// and write DIR/accuracy.md plus one Pareto plot (PNG) per routine.
+    Report {
+        /// Output directory.
+        #[arg(long, default_value = "report")]
+        out: PathBuf,
+        /// Smoke-test size (a fraction of a second; figures are not
+        /// meaningful).
+        #[arg(long)]
+        tiny: bool,
     },
 }
 
@@ -174,6 +186,35 @@ fn render_cmd(
     })
 }
 
+/// Renders the column-caster scene [`render::MAZE`]. It has one path (the
+/// column caster, a ray method), so `--method` only chooses the file name.
+fn maze_cmd(
+    method: Method,
+    scalar: ScalarKind,
+    (w, h): (u16, u16),
+    out_file: Option<PathBuf>,
+    out: &mut dyn Write,
+) -> Result<(), String> {
+    if method == Method::Raster {
+        line(
+            out,
+            "note: maze has no raster path; rendering with the column caster",
+        );
+    }
+    let file = out_file.unwrap_or_else(|| PathBuf::from(format!("{}-column.png", render::MAZE)));
+    let img = render::render_maze(scalar, w, h).map_err(|e| format!("scene maze: {e}"))?;
+    img.write_png(&file)?;
+    line(
+        out,
+        &format!(
+            "wrote {} (maze, {w}x{h}, column caster, {})",
+            file.display(),
+            scalar.name()
+        ),
+    );
+    Ok(())
+}
+
 /// The agreement of the two paths on one scene, plus both images.
 ///
 /// # Errors
@@ -234,6 +275,29 @@ fn compare_cmd(
     })
 }
 
+fn report_cmd(dir: &Path, tiny: bool, out: &mut dyn Write) -> Result<(), String> {
+    let (size, tiny_flag) = if tiny {
+        (report::Size::TINY, " --tiny")
+    } else {
+        (report::Size::FULL, "")
+    };
+    let cmd = format!(
+        "cargo run --release -p sightline-sim -- report --out {}{tiny_flag}",
+        dir.display()
+    );
+    let w = report::generate(dir, size, &cmd)?;
+    line(
+        out,
+        &format!(
+            "wrote {} and {} plots in {:.1} s",
+            w.markdown.display(),
+            w.plots.len(),
+            w.seconds
+        ),
+    );
+    Ok(())
+}
+
 /// Runs the command line `args` (including the program name), writing
 /// normal output to `out`.
 ///
@@ -265,6 +329,13 @@ where
             scalar,
             size,
             out: file,
+        }) if scene == render::MAZE => maze_cmd(method, scalar, size, file, out),
+        Some(Command::Render {
+            scene,
+            method,
+            scalar,
+            size,
+            out: file,
         }) => SceneSource::open(&scene)
             .and_then(|src| render_cmd(&src, method, scalar, size, file, out)),
         Some(Command::List) => {
@@ -272,15 +343,24 @@ where
             for s in scene::builtin::ALL {
                 line(out, &format!("  {:<16} {}", s.name, s.description));
             }
+            line(
+                out,
+                &format!("  {:<16} {}", render::MAZE, render::MAZE_DESCRIPTION),
+            );
             line(out, "scene files: see host-sim/scenes/*.ron");
             Ok(())
         }
+        Some(Command::Compare { scene, .. }) if scene == render::MAZE => Err(format!(
+            "scene {}: only the column caster renders it; use `render {0}`",
+            render::MAZE
+        )),
         Some(Command::Compare {
             scene,
             scalar,
             size,
             out: file,
         }) => SceneSource::open(&scene).and_then(|src| compare_cmd(&src, scalar, size, file, out)),
+        Some(Command::Report { out: dir, tiny }) => report_cmd(&dir, tiny, out),
     };
     r.map_err(RunError::Failed)
 }

@@ -298,14 +298,25 @@ pub fn load(path: &Path) -> Result<LoadedScene, FileError> {
         col: 0,
         message: format!("cannot read scene file: {e}"),
     })?;
-    let def: SceneDef = ron::from_str(&text).map_err(|e| FileError {
+    parse(&text, path)
+}
+
+/// Parses scene-file `text` as if read from `path` (which names the file
+/// in errors, and whose directory holds the referenced mesh and texture
+/// files), loading everything it references.
+///
+/// # Errors
+/// As [`load`], apart from reading the scene file itself. Never panics,
+/// whatever the text (checked by the `scene_file` fuzz target).
+pub fn parse(text: &str, path: &Path) -> Result<LoadedScene, FileError> {
+    let def: SceneDef = ron::from_str(text).map_err(|e| FileError {
         file: path.to_path_buf(),
         line: e.span.start.line,
         col: e.span.start.col,
         message: format!("{} (expected a scene as described in docs/sim.md)", e.code),
     })?;
     let here = |needle: &str, message: String| {
-        let (line, col) = locate(&text, needle);
+        let (line, col) = locate(text, needle);
         FileError {
             file: path.to_path_buf(),
             line,

@@ -282,3 +282,31 @@ fn default_run_writes_png_in_current_directory() {
     let img = read_png_rgb8(&d.join("sightline-bunny.png")).unwrap();
     assert_eq!((img.width, img.height), (320, 240));
 }
+
+#[test]
+fn maze_renders_with_the_column_caster() {
+    assert!(run_ok(&["list"]).contains("maze"));
+    let d = temp_dir("maze");
+    let file = d.join("m.png");
+    let text = run_ok(&[
+        "render",
+        "maze",
+        "--method",
+        "ray",
+        "--scalar",
+        "fixed",
+        "--size",
+        "64x48",
+        "--out",
+        file.to_str().unwrap(),
+    ]);
+    assert!(text.contains("column caster"), "{text}");
+    let img = read_png_rgb8(&file).unwrap();
+    assert_eq!((img.width, img.height), (64, 48));
+    // Walls, ceiling and floor: more than three colours.
+    let mut colours: Vec<&[u8]> = img.rgb.chunks(3).collect();
+    colours.sort_unstable();
+    colours.dedup();
+    assert!(colours.len() > 3, "{} colours", colours.len());
+    assert!(run_err(&["compare", "maze"]).contains("column caster"));
+}

@@ -277,7 +277,8 @@ impl<S: Scalar> Workload<S> {
 }
 
 /// `floor(255·I)` for I in [0, 1].
-fn intensity_byte<S: Scalar>(i: S) -> u8 {
+#[must_use]
+pub fn intensity_byte<S: Scalar>(i: S) -> u8 {
     (i.to_f32() * 255.0).clamp(0.0, 255.0) as u8
 }
 

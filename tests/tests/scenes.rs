@@ -118,3 +118,41 @@ fn golden_images() {
          SIGHTLINE_BLESS=1 if the change is deliberate:\n{failures:#?}"
     );
 }
+
+/// The column caster's scene `maze` (not a `Scene`: a grid map), golden
+/// at 96×72 in f32 and I16F16 as `tests/images/maze/column-<scalar>.png`,
+/// blessed the same way as the other golden images.
+#[test]
+fn golden_maze() {
+    let bless = std::env::var_os("SIGHTLINE_BLESS").is_some_and(|v| v == "1");
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("images")
+        .join(render::MAZE);
+    let mut failures = Vec::new();
+    for scalar in [ScalarKind::F32, ScalarKind::Fixed] {
+        let path = dir.join(format!("column-{}.png", scalar.name()));
+        let img = render::render_maze(scalar, 96, 72).unwrap();
+        let rgb = img.rgb8();
+        if bless {
+            std::fs::create_dir_all(&dir).unwrap();
+            write_rgb8_png(&path, img.width, img.height, &rgb).unwrap();
+            continue;
+        }
+        let same =
+            read_png_rgb8(&path).is_ok_and(|g| (g.width, g.height) == (96, 72) && g.rgb == rgb);
+        if !same {
+            let new = path.with_extension("png.new");
+            std::fs::create_dir_all(&dir).unwrap();
+            write_rgb8_png(&new, img.width, img.height, &rgb).unwrap();
+            failures.push(format!(
+                "{} differs (see {})",
+                path.display(),
+                new.display()
+            ));
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "golden images differ; bless with SIGHTLINE_BLESS=1 if deliberate:\n{failures:#?}"
+    );
+}

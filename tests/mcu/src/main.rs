@@ -14,18 +14,35 @@
 //!   from [`kernels::FX_HASH_EXPECTED`], which the host test checks too, or
 //!   if a `solve3x3` system fails to solve.
 //!
+//! - `frames`: renders every scene of [`frames::SCENES`] in I16F16 and f32
+//!   at 320×240 through bands and prints `frame SCENE SCALAR 0x…` (FNV-1a
+//!   of the frame); f32 frames are also dumped row by row as
+//!   `row SCENE f32 Y HEX…` (four hex digits per RGB565 pixel) so that the
+//!   host can count differing pixels.
+//! - `fill MODE full|half`: fills the fill-rate quad of span shader `MODE`
+//!   ([`frames::FILL_MODES`]) [`frames::FILL_REPEAT`] times at full or half
+//!   width. The difference in guest instructions over the difference in
+//!   pixels is the cost per pixel.
+//! - `wl w1|w2 SCALAR NN`: sets up W1 or W2 and renders `NN` of its frames
+//!   (every 10th of a turn of 200). Run with 20 and 00: the difference over
+//!   20 is the cost per frame.
+//!
 //! Exit status (semihosting): 0 on success, 1 on a bad command line,
 //! mismatch or panic.
 
 #![no_std]
 #![no_main]
 
+mod frames;
 mod kernels;
 
 use cortex_m_rt::entry;
-use cortex_m_semihosting::{debug, hprintln, nr, syscall1};
+use cortex_m_semihosting::{debug, hio, hprintln, nr, syscall1};
 use panic_semihosting as _;
+use sightline::pipeline::{Intensity, MeshVertex, Vertex};
 use sightline::scalar::I16F16;
+use sightline::scalar::Scalar;
+use sightline::scene::Color;
 
 /// The semihosting command line (QEMU joins its `arg=` values with spaces).
 fn cmdline(buf: &mut [u8]) -> &str {
@@ -66,10 +83,11 @@ fn exit(ok: bool) -> ! {
 
 fn usage(cmd: &str) -> ! {
     hprintln!(
-        "bad command line {:?}; expected `run KERNEL SCALAR N` or `hash`",
+        "bad command line {:?}; expected `run KERNEL SCALAR N`, `hash`, `frames`, `fill MODE full|half` or `wl w1|w2 SCALAR NN`",
         cmd
     );
     hprintln!("kernels: {:?}; scalars: I16F16, f32", kernels::KERNELS);
+    hprintln!("fill modes: {:?}", frames::FILL_MODES);
     exit(false)
 }
 
@@ -117,6 +135,165 @@ fn main() -> ! {
             }
             exit(ok)
         }
+        Some("frames") => {
+            let ok = all_frames();
+            exit(ok)
+        }
+        Some("fill") => {
+            let (Some(mode), Some(width), None) = (args.next(), args.next(), args.next()) else {
+                usage(cmd)
+            };
+            let halve = match width {
+                "full" => false,
+                "half" => true,
+                _ => usage(cmd),
+            };
+            let (color, depth) = frame_buffers();
+            match frames::fill(mode, halve, color, depth) {
+                Some(px) => {
+                    hprintln!("fill {} {} pixels {}", mode, width, px);
+                    exit(true)
+                }
+                None => usage(cmd),
+            }
+        }
+        Some("wl") => {
+            let (Some(which), Some(scalar), Some(n), None) = (
+                args.next(),
+                args.next(),
+                args.next().and_then(parse_u32),
+                args.next(),
+            ) else {
+                usage(cmd)
+            };
+            let gouraud = match which {
+                "w1" => false,
+                "w2" => true,
+                _ => usage(cmd),
+            };
+            let drawn = match scalar {
+                "I16F16" => workload::<I16F16>(gouraud, n),
+                "f32" => workload::<f32>(gouraud, n),
+                _ => usage(cmd),
+            };
+            match drawn {
+                Some(d) => {
+                    hprintln!("wl {} {} frames {} triangles {}", which, scalar, n, d);
+                    exit(true)
+                }
+                None => exit(false),
+            }
+        }
         _ => usage(cmd),
     }
+}
+
+const FRAME: usize = frames::FRAME_PIXELS;
+static mut COLOR: [Color; FRAME] = [Color::new(0, 0, 0); FRAME];
+static mut DEPTH: [u16; FRAME] = [0; FRAME];
+
+/// The whole-frame colour and depth buffers (in .bss, not on the stack).
+fn frame_buffers() -> (&'static mut [Color], &'static mut [u16]) {
+    // SAFETY: called once per run (each command takes them at most once),
+    // single-threaded, no interrupts touch them.
+    unsafe {
+        (
+            &mut *core::ptr::addr_of_mut!(COLOR),
+            &mut *core::ptr::addr_of_mut!(DEPTH),
+        )
+    }
+}
+
+/// Renders every scene in both scalars; prints hashes and the f32 rows.
+fn all_frames() -> bool {
+    let (color, depth) = frame_buffers();
+    let mut out = hio::hstdout().ok();
+    let mut ok = true;
+    for name in frames::SCENES {
+        for fx in [true, false] {
+            let scalar = if fx { "I16F16" } else { "f32" };
+            let mut line = [0u8; 64 + 4 * frames::WIDTH as usize];
+            let dump = |y: u16, px: &[Color]| {
+                if fx {
+                    return;
+                }
+                let n = row_line(&mut line, name, y, px);
+                if let Some(o) = out.as_mut() {
+                    let _ = o.write_all(&line[..n]);
+                }
+            };
+            let r = if fx {
+                frames::render_scene::<I16F16>(name, color, depth, dump)
+            } else {
+                frames::render_scene::<f32>(name, color, depth, dump)
+            };
+            match r {
+                Ok(h) => hprintln!("frame {} {} {:#018x}", name, scalar, h),
+                Err(e) => {
+                    hprintln!("frame {} {} error {:?}", name, scalar, e);
+                    ok = false;
+                }
+            }
+        }
+    }
+    ok
+}
+
+/// Formats `row NAME f32 Y HEX…\n` into `line`; returns its length.
+fn row_line(line: &mut [u8], name: &str, y: u16, px: &[Color]) -> usize {
+    use embedded_graphics::pixelcolor::IntoStorage;
+    const HEX: &[u8; 16] = b"0123456789abcdef";
+    let mut n = 0;
+    let mut put = |b: u8| {
+        if n < line.len() {
+            line[n] = b;
+            n += 1;
+        }
+    };
+    for &b in b"row " {
+        put(b);
+    }
+    for &b in name.as_bytes() {
+        put(b);
+    }
+    for &b in b" f32 " {
+        put(b);
+    }
+    for d in [y / 100, y / 10 % 10, y % 10] {
+        put(b'0' + d as u8);
+    }
+    put(b' ');
+    for &c in px {
+        let v = c.into_storage();
+        for s in [12, 8, 4, 0] {
+            put(HEX[((v >> s) & 15) as usize]);
+        }
+    }
+    put(b'\n');
+    n
+}
+
+/// Runs `n` frames of W1 or W2 (frames 0, 10, 20, … of a turn of 200).
+fn workload<S: Scalar>(gouraud: bool, n: u32) -> Option<u32> {
+    const V: usize = frames::BUNNY_VERTS;
+    let wl = frames::Workload::<S>::new()?;
+    let (color, depth) = frame_buffers();
+    let mut flat = [Vertex::new(sightline::math::Vec3::ZERO, ()); V];
+    let mut lit = [Vertex::new(sightline::math::Vec3::ZERO, Intensity(S::ZERO)); V];
+    let mut p0 = [MeshVertex::default(); V];
+    let mut p1 = [MeshVertex::default(); V];
+    let mut drawn = 0;
+    for i in 0..n {
+        drawn = wl.frame(
+            gouraud,
+            i * frames::WORKLOAD_STEP,
+            color,
+            depth,
+            &mut flat,
+            &mut lit,
+            &mut p0,
+            &mut p1,
+        );
+    }
+    Some(drawn)
 }

@@ -7,6 +7,7 @@
 //! cargo run --release -p sightline-tests --bin workload -- w2 200 --scalar fixed
 //! cargo run --release -p sightline-tests --bin workload -- w1 200 --passes 5
 //! cargo run --release -p sightline-tests --bin workload -- fill gouraud-depth 100
+//! cargo run --release -p sightline-tests --bin workload -- ray-grid 20
 //! ```
 //!
 //! `w1|w2 N` renders frames k = 0..N−1 of N (yaw 2πk/N) exactly once and
@@ -19,6 +20,11 @@
 //! passes' averages. `--scalar f32` (default) or `--scalar fixed` (I16F16)
 //! picks the pipeline's scalar type.
 //!
+//! `ray-brute|ray-bounds|ray-grid N [--scalar f32|fixed] [--passes P]`
+//! casts N frames of 320×240 primary rays at the bunny posed as W1 frame
+//! 0 and shades them by the W1 flat rule (`sightline_tests::ray_workload`);
+//! N = 0 does only the set-up, including the grid build.
+//!
 //! `fill MODE N [--passes P]` fills one 320×240-covering polygon per frame
 //! with one shader (MODE: flat, flat-depth, gouraud-depth, affine, persp,
 //! persp16) and also prints pixels per second; see
@@ -26,12 +32,13 @@
 
 use sightline::scalar::{I16F16, Scalar};
 use sightline_tests::fill::{FillBench, FillMode};
+use sightline_tests::ray_workload::{RayMode, RayWorkload};
 use sightline_tests::workload::{Frame, Model, Shading, Workload};
 use std::hint::black_box;
 use std::process::ExitCode;
 use std::time::Instant;
 
-const USAGE: &str = "usage: workload w1|w2 N [--scalar f32|fixed] [--passes P]\n       workload fill flat|flat-depth|gouraud-depth|affine|persp|persp16 N [--passes P]";
+const USAGE: &str = "usage: workload w1|w2 N [--scalar f32|fixed] [--passes P]\n       workload ray-brute|ray-bounds|ray-grid N [--scalar f32|fixed] [--passes P]\n       workload fill flat|flat-depth|gouraud-depth|affine|persp|persp16 N [--passes P]";
 
 /// Median ns per frame: of the individual frames (one pass), or of the
 /// per-pass averages after a warm-up pass.
@@ -98,6 +105,30 @@ fn run<S: Scalar>(shading: Shading, n: u32, passes: Option<u32>) {
     println!("ns_per_frame: {med}");
 }
 
+fn ray<S: Scalar>(mode: RayMode, n: u32, passes: Option<u32>) {
+    let mut w = RayWorkload::<S>::new(&Model::bunny(), mode);
+    let mut frame = Frame::default();
+    let mut hits = 0;
+    let med = time_frames(n, passes, |_| {
+        hits = w.render(&mut frame.color).hits;
+        black_box(&frame.color);
+    });
+    let rays =
+        u32::from(sightline_tests::workload::WIDTH) * u32::from(sightline_tests::workload::HEIGHT);
+    println!(
+        "{} {} N={n} passes={} rays_per_frame={rays} hits_per_frame={hits} grid_res={:?} objects={}",
+        mode.name(),
+        S::NAME,
+        passes.map_or("1 (per-frame median)".to_string(), |p| p.to_string()),
+        w.grid_res(),
+        w.objects(),
+    );
+    if n > 0 {
+        println!("Mrays_per_s: {:.3}", rays as f64 / med.max(1) as f64 * 1e3);
+    }
+    println!("ns_per_frame: {med}");
+}
+
 /// Parses `[--scalar f32|fixed] [--passes P]`; `None` on anything else.
 fn options(rest: &[String]) -> Option<(bool, Option<u32>)> {
     let mut fixed = false;
@@ -149,6 +180,19 @@ fn main() -> ExitCode {
                 run::<I16F16>(shading, n, passes);
             } else {
                 run::<f32>(shading, n, passes);
+            }
+        }
+        Some(m) if RayMode::from_name(m).is_some() => {
+            let mode = RayMode::from_name(m).unwrap_or(RayMode::Brute);
+            let n = args.get(1).and_then(|s| s.parse::<u32>().ok());
+            let (Some(n), Some((fixed, passes))) = (n, options(args.get(2..).unwrap_or(&[])))
+            else {
+                return usage();
+            };
+            if fixed {
+                ray::<I16F16>(mode, n, passes);
+            } else {
+                ray::<f32>(mode, n, passes);
             }
         }
         _ => return usage(),

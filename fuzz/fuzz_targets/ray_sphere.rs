@@ -161,7 +161,15 @@ fn run<T: Scalar>(input: &Input) {
     let h2 = Dd::new(rs).mul(Dd::new(rs)).sub(ddot3(l, l));
     let h = h2.sqrt().to_f64();
     let bf = b.to_f64();
-    let refs = [(-bf - h) * back, (-bf + h) * back];
+    // Scale back as (x·s)/|d|, one rounding at the end: `x·back` rounds
+    // `back` first, which, when it is subnormal, costs the reference up to
+    // |x|/2 units of the last place (a 2-unit disagreement with a correct
+    // root of 2.3e-311 was the first `ray_sphere` smoke failure in CI).
+    let to_caller = |x: f64| {
+        let y = x * s;
+        if y.is_finite() { y / d_len } else { x * back }
+    };
+    let refs = [to_caller(-bf - h), to_caller(-bf + h)];
     let got: Vec<f64> = match roots {
         Roots::None => {
             assert!(
@@ -180,8 +188,11 @@ fn run<T: Scalar>(input: &Input) {
             // Beyond the range: saturated.
             continue;
         }
+        // `back` last: it can be subnormal, and `back·K·ε` first would
+        // underflow to 0 and drop the conditioning term (second CI-smoke
+        // class of false alarms, found by a random-input sweep).
         let bound =
-            back * K * e * (1.0 + want.abs() / back + cond) + (1.0 + want.abs()) * fl / d_len + fl;
+            K * e * (1.0 + want.abs() / back + cond) * back + (1.0 + want.abs()) * fl / d_len + fl;
         assert!(
             (g - want).abs() <= bound || !bound.is_finite(),
             "{}: root {g}, reference {want}, |diff| {} > bound {bound} (r/h {cond})",

@@ -1004,3 +1004,53 @@ fn saturated_gradient_does_not_overflow() {
         }
     }
 }
+
+#[cfg(feature = "perspective")]
+proptest! {
+    /// The reciprocal used at subdivided-run endpoints against the exact
+    /// quotient in i128: never below it in magnitude, above it by less
+    /// than 2^−31 of it plus the truncation, so equal or one unit larger
+    /// while the quotient is below 2^31 units, and then exact when q
+    /// divides.
+    #[test]
+    fn divide_approx_is_within_one_unit_of_the_exact_quotient(
+        x in any::<i32>(),
+        q in prop_oneof![1i32..64, 1i32..(1 << 24), any::<i32>()],
+    ) {
+        use super::texture::{divide, divide_approx};
+        let (got, _) = divide_approx(&[x, 0, q]);
+        let qq = q.max(1) as i128;
+        let num = (x.unsigned_abs() as i128) << PERSPECTIVE_Q_BITS;
+        let trunc = num / qq;
+        let m = got.unsigned_abs() as i128;
+        prop_assert!(got == 0 || (got < 0) == (x < 0));
+        prop_assert!(m >= trunc, "{m} < {trunc}");
+        prop_assert!(m - trunc <= trunc / (1 << 31) + 1, "{m} vs {trunc}");
+        if trunc < (1 << 31) {
+            prop_assert!(m - trunc <= 1);
+            prop_assert_eq!(divide(&[x, 0, q]).0.unsigned_abs() as i128, trunc);
+            if num % qq == 0 {
+                prop_assert_eq!(m, trunc);
+            }
+        }
+    }
+}
+
+#[cfg(feature = "perspective")]
+#[test]
+fn recip62_is_the_exact_ceiling() {
+    use super::texture::recip62;
+    let exact = |d: u32| (1u128 << 62).div_ceil(d as u128) as u64;
+    // Both ends, every seed interval's ends and a stride through the rest.
+    let mut ds: Vec<u32> = vec![1 << 30, (1 << 31) - 1];
+    for i in 0..=256u32 {
+        let b = (256 + i) << 22;
+        ds.extend([b.wrapping_sub(1), b, b + 1]);
+    }
+    ds.extend((0..200_000u32).map(|k| (1 << 30) + k.wrapping_mul(5_368_709) % (1 << 30)));
+    for d in ds {
+        if (1 << 30..1 << 31).contains(&d) {
+            assert_eq!(recip62(d), exact(d), "d = {d}");
+        }
+    }
+}

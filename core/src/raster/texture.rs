@@ -11,9 +11,13 @@
 //!   distorted (swimming) for steep polygons under perspective.
 //! - [`PerspectiveTexture`] interpolates (u/z, v/z, 1/z), which *are*
 //!   linear in screen space, and divides. With `N = 1` it divides at every
-//!   pixel (exact); with `N = 8`, `16` or `32` it divides at the ends of
-//!   runs of `N` pixels and steps linearly between them (the classic
-//!   subdivided affine compromise: two divisions per run).
+//!   pixel (exact); with `N = 8`, `16` or `32` it computes (u, v) at every
+//!   N-th pixel of a span (and at its last pixel) and steps linearly
+//!   between them (the classic subdivided affine compromise). Each such
+//!   point costs one division-free reciprocal and two multiplies, and the
+//!   step over a full run is a shift: on ARMv6-M, which has no divide
+//!   instruction, 16-pixel runs cost 68 instructions per pixel where
+//!   exact division at both ends of every run cost 187 (`docs/mcu/`).
 
 #[cfg(feature = "perspective")]
 use super::PERSPECTIVE_Q_BITS;
@@ -226,8 +230,12 @@ impl<C: Shade, W: Wrap> SpanShader<3> for LitAffineTexture<'_, C, W> {
 /// Perspective-correct texture mapping from the varyings
 /// (u·q, v·q, q) with `q = near/z`: (u, v) = (u·q / q, v·q / q).
 ///
-/// `N` is the run length between exact divisions: 1 for exact per-pixel
-/// division, 8, 16 or 32 for subdivided affine runs (any `N ≥ 1` works).
+/// `N` is the run length: 1 for exact per-pixel division, 8, 16 or 32 for
+/// subdivided affine runs (any `N ≥ 1` works; a power of two makes the
+/// step a shift). With `N > 1`, (u, v) at every N-th pixel and at the
+/// span's last pixel come from a division-free reciprocal, equal to the
+/// exact quotient or one unit of 2^−16 above it in magnitude (for |u|
+/// below 2^15 texels), and the pixels between are stepped linearly.
 /// Feed it [`UvPerspective`](crate::pipeline::UvPerspective) vertices.
 #[cfg(feature = "perspective")]
 #[derive(Clone, Copy, Debug)]
@@ -251,17 +259,21 @@ impl<'a, C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'a, C, W, N> {
 
 #[cfg(feature = "perspective")]
 impl<C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'_, C, W, N> {
-    /// Pixels of one run from (u, v) = `a` stepping by `d` (16.16).
+    /// Pixels of one run from (u, v) = `a` stepping by `d` (16.16), where
+    /// `d` is `b − a` divided (rounded either way) by the run's length or
+    /// one less, so every value of the run lies within `run.len()` units
+    /// of the range between `a` and `b`.
     #[inline]
-    fn fill_run(&self, run: &mut [C], a: (i64, i64), d: (i64, i64)) {
-        let last = run.len().saturating_sub(1) as i64;
-        let fits = |v: i64, dv: i64| {
-            let end = dv.saturating_mul(last).saturating_add(v);
-            i32::try_from(v).is_ok() && i32::try_from(end).is_ok()
-        };
-        if fits(a.0, d.0) && fits(a.1, d.1) {
-            // Every value lies between the two ends, so i32 holds them all
-            // and `>> 16` equals `texel_coord`.
+    fn fill_run(&self, run: &mut [C], a: (i64, i64), b: (i64, i64), d: (i64, i64)) {
+        // No multiplication (a 64-bit one is a library call on ARMv6-M):
+        // both ends with a margin of one unit per pixel.
+        let m = run.len() as i64;
+        let (lo, hi) = (i32::MIN as i64 + m, i32::MAX as i64 - m);
+        let fits = |v: i64, w: i64| lo <= v.min(w) && v.max(w) <= hi;
+        if fits(a.0, b.0) && fits(a.1, b.1) {
+            // Every value lies within i32 (see above), so `>> 16` equals
+            // `texel_coord`, and the i32 steps, even where `d` itself does
+            // not fit (a 2-pixel run), wrap back to the true values.
             let (mut u, mut v) = (a.0 as i32, a.1 as i32);
             let (du, dv) = (d.0 as i32, d.1 as i32);
             for p in run {
@@ -285,7 +297,7 @@ impl<C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'_, C, W, N> {
 /// (u, v) in 16.16 from (u·q, v·q) in 16.16 and q in 8.24.
 #[cfg(feature = "perspective")]
 #[inline]
-fn divide(v: &[i32; 3]) -> (i64, i64) {
+pub(crate) fn divide(v: &[i32; 3]) -> (i64, i64) {
     // q ≥ 1 guards the division; |u·q| < 2^31, so the shift stays below
     // 2^55.
     let q = (v[2] as i64).max(1);
@@ -293,6 +305,90 @@ fn divide(v: &[i32; 3]) -> (i64, i64) {
         ((v[0] as i64) << PERSPECTIVE_Q_BITS) / q,
         ((v[1] as i64) << PERSPECTIVE_Q_BITS) / q,
     )
+}
+
+/// [`divide`] with one reciprocal instead of two divisions, for the
+/// endpoints of subdivided runs: `r = ⌈2^62 / q'⌉` for `q' = q·2^s`
+/// normalised to `[2^30, 2^31)`, then `|u·q|·r >> (38 − s)` with the sign
+/// of `u·q` (truncation toward zero, as the division). `r` rounds up, so
+/// the magnitude is never below the exact quotient's and exceeds it by
+/// less than 2^−31 of it: by less than one unit of 2^−16 while |u| is
+/// below 2^15 texels (the i32 range of the varyings), where the result
+/// equals `divide`'s or is one unit larger, and an exact quotient stays
+/// exact. On ARMv6-M, which has no divide instruction, [`recip62`] costs
+/// five 32×32→64 multiplies and a table load, where `divide` is two
+/// 64-bit divisions (each some hundreds of instructions in
+/// compiler-builtins).
+#[cfg(feature = "perspective")]
+#[inline]
+pub(crate) fn divide_approx(v: &[i32; 3]) -> (i64, i64) {
+    // q in [1, 2^31); s in [0, 30].
+    let q = v[2].max(1) as u32;
+    let s = q.leading_zeros() - 1;
+    let r = recip62(q << s);
+    let sh = 38 - s;
+    let one = |x: i32| -> i64 {
+        // |x| ≤ 2^31 and r ≤ 2^32: the product is below 2^63 (u64).
+        let m = ((x.unsigned_abs() as u64) * r) >> sh;
+        // m < 2^55 (sh ≥ 8), so it fits i64 either way.
+        if x < 0 { -(m as i64) } else { m as i64 }
+    };
+    (one(v[0]), one(v[1]))
+}
+
+/// Seeds for [`recip62`]: `⌊2^24 / (257 + i)⌋`, the reciprocal of the
+/// top of the interval `[256 + i, 257 + i)·2^22` that a normalised
+/// divisor with those leading bits lies in, shifted to 16 bits. Never
+/// above the true reciprocal, within 1/256 of it.
+#[cfg(feature = "perspective")]
+const RECIP_SEED: [u16; 256] = {
+    let mut t = [0u16; 256];
+    let mut i = 0;
+    while i < 256 {
+        t[i] = ((1u32 << 24) / (257 + i as u32)) as u16;
+        i += 1;
+    }
+    t
+};
+
+/// `⌈2^62 / d⌉` for `d` in `[2^30, 2^31)` (so the result is in
+/// `(2^31, 2^32]`), without a division: a table seed good to 8 bits, two
+/// Newton steps `x ← x + x·(2^62 − d·x)/2^62` (each doubles the correct
+/// bits and, truncating, stays at or below the true reciprocal), then
+/// unit steps up to the ceiling. Exact for every `d`: checked
+/// exhaustively for all 2^30 divisors on the host (at most 3 unit steps
+/// were needed; the code takes 4), and on a sample by the unit test
+/// `recip62_is_the_exact_ceiling`. Any other `d` is clamped into the range
+/// first.
+#[cfg(feature = "perspective")]
+#[inline]
+pub(crate) fn recip62(d: u32) -> u64 {
+    let d = d.clamp(1 << 30, (1 << 31) - 1);
+    let s0 = RECIP_SEED[((d >> 22) & 0xff) as usize] as u32;
+    // First Newton step in 32-bit arithmetic (ARMv6-M has only a
+    // 32×32→32 multiply): p = d·s0/2^15 from d's two 15/16-bit halves (the
+    // seed is below 2^24/(d >> 22), so d·s0 < 2^46 and p < 2^31), e its
+    // shortfall from 2^31 (below 2^31/128), then x = s0·2^16·(1 + e/2^31).
+    // The products fit u32. Rounding can leave x a few units above the
+    // reciprocal, which is why it steps back 8 units (2^−29 of it).
+    let p = (d >> 15) * s0 + (((d & 0x7fff) * s0) >> 15);
+    let e = (1u32 << 31).saturating_sub(p);
+    let mut x = ((s0 as u64) << 16) + ((s0 * (e >> 8)) >> 7) as u64 - 8;
+    // Second step in 64-bit arithmetic: x ≤ 2^62/d, so d·x ≤ 2^62 and
+    // e ≥ 0; x is within 2^−14 of the reciprocal, so e >> 22 < 2^32 and
+    // the product fits u64.
+    let two62 = 1u64 << 62;
+    let e = two62 - d as u64 * x;
+    x += (x * (e >> 22)) >> 40;
+    // Now 2^62/d − x is a few units at most: step up to the ceiling,
+    // branch-free (LLVM turns an early-exit loop into a 64-bit division).
+    let mut p = d as u64 * x;
+    for _ in 0..4 {
+        let below = (p < two62) as u64;
+        p += d as u64 & below.wrapping_neg();
+        x += below;
+    }
+    x
 }
 
 #[cfg(feature = "perspective")]
@@ -335,63 +431,85 @@ impl<C: Copy, W: Wrap, const N: u32> SpanShader<3> for PerspectiveTexture<'_, C,
             });
             return;
         }
-        // Exact (u, v) at the first pixel of each run of N and at the
-        // run's last pixel; linear steps between. Both ends lie on the
-        // span, so q there is within the polygon's range.
+        // (u, v) from a reciprocal at the first pixel of every run of N
+        // and at the span's last pixel; linear steps between. Run k covers
+        // pixels kN..kN+N and steps from its start towards the next run's
+        // start, so every endpoint serves two runs (one reciprocal per N
+        // pixels) and, N being a power of two, the step is a shift. The
+        // last run steps towards the span's last pixel, so no endpoint
+        // lies outside the span, where q may leave the polygon's range.
         let at = |i: u32| -> (i64, i64) {
             let i = i as i32;
-            divide(&[
+            divide_approx(&[
                 start[0].wrapping_add(step[0].wrapping_mul(i)),
                 start[1].wrapping_add(step[1].wrapping_mul(i)),
                 start[2].wrapping_add(step[2].wrapping_mul(i)),
             ])
         };
+        // The step of one run of `seg` pixels starting at `i` with (u, v)
+        // `a`, and the next run's start.
+        let run_step = |i: u32, seg: u32, a: (i64, i64)| -> ((i64, i64), (i64, i64)) {
+            if i.saturating_add(seg) < len {
+                let b = at(i + seg);
+                let d = if seg == N && N.is_power_of_two() {
+                    let k = N.trailing_zeros();
+                    ((b.0 - a.0) >> k, (b.1 - a.1) >> k)
+                } else {
+                    // `checked_div`: seg ≥ 1 here, but this keeps the
+                    // division's panic path out of the binary.
+                    let n = seg as i64;
+                    (
+                        (b.0 - a.0).checked_div(n).unwrap_or(0),
+                        (b.1 - a.1).checked_div(n).unwrap_or(0),
+                    )
+                };
+                (d, b)
+            } else if seg > 1 {
+                let b = at(len - 1);
+                let n = seg as i64 - 1;
+                (
+                    (
+                        (b.0 - a.0).checked_div(n).unwrap_or(0),
+                        (b.1 - a.1).checked_div(n).unwrap_or(0),
+                    ),
+                    b,
+                )
+            } else {
+                ((0, 0), a)
+            }
+        };
         if let Some(pixels) = target.span_mut(y, x, len) {
             // Slice target: the same values as the general path below, one
             // run of N at a time in a tight loop.
             let mut i = 0u32;
+            let mut a = at(0);
             for run in pixels.chunks_mut(N as usize) {
                 let seg = run.len() as u32;
-                let a = at(i);
-                let (du, dv) = if seg > 1 {
-                    let b = at(i + seg - 1);
-                    let n = seg as i64 - 1;
-                    ((b.0 - a.0) / n, (b.1 - a.1) / n)
-                } else {
-                    (0, 0)
-                };
-                self.fill_run(run, a, (du, dv));
+                let (d, next) = run_step(i, seg, a);
+                self.fill_run(run, a, next, d);
+                a = next;
                 i += seg;
             }
             return;
         }
         let mut i = 0u32;
         let mut cur = at(0);
-        let (mut du, mut dv) = (0i64, 0i64);
+        let (mut d, mut next) = ((0i64, 0i64), cur);
         let mut left = 0u32;
         target.fill_with(y, x, len, || {
             if left == 0 {
                 // `max(1)`: robust even if a target called this more than `len`
                 // times, which the `Target` contract rules out.
                 let seg = N.min(len.saturating_sub(i)).max(1);
-                if seg > 1 {
-                    let end = at(i + seg - 1);
-                    du = (end.0 - cur.0) / (seg as i64 - 1);
-                    dv = (end.1 - cur.1) / (seg as i64 - 1);
-                }
+                cur = next;
+                (d, next) = run_step(i, seg, cur);
                 left = seg;
             }
             let c = self.tex.sample::<W>(texel_coord(cur.0), texel_coord(cur.1));
             left -= 1;
             i += 1;
-            if left == 0 {
-                if i < len {
-                    cur = at(i);
-                }
-            } else {
-                cur.0 += du;
-                cur.1 += dv;
-            }
+            cur.0 += d.0;
+            cur.1 += d.1;
             c
         });
     }

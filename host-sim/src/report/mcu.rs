@@ -23,6 +23,34 @@ pub enum McuCell {
     Gap(&'static str),
 }
 
+/// The generated MCU tables, for the span shaders' instructions per pixel.
+const TABLES_MD: &str = include_str!("../../../docs/mcu/tables.md");
+
+/// Instructions per pixel of the span shader `mode` (`persp`, `persp16`,
+/// `affine`, ... as in `docs/mcu/tables.md`'s per-pixel table): the scan
+/// converter's inner loop on a large quad, without the per-polygon and
+/// per-row set-up, and independent of the pipeline's scalar (the
+/// rasteriser is integer). A gap if the table has no such row.
+pub fn lookup_span(mode: &'static str) -> McuCell {
+    let key = format!("| {mode} |");
+    for line in TABLES_MD.lines() {
+        if let Some(rest) = line.strip_prefix(&key) {
+            let cells: Vec<f64> = rest
+                .split('|')
+                .filter_map(|c| c.trim().parse::<f64>().ok())
+                .collect();
+            if cells.len() >= 2 {
+                return McuCell::Measured {
+                    kernel: mode,
+                    v6m: cells[0],
+                    v7em: cells[1],
+                };
+            }
+        }
+    }
+    McuCell::Gap("—, not measured: no such span shader in docs/mcu/tables.md")
+}
+
 /// The usual gap: the QEMU harness has no kernel for this routine.
 pub const NO_KERNEL: McuCell = McuCell::Gap("—, not measured: no QEMU kernel yet");
 
@@ -71,6 +99,18 @@ impl McuCell {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn reads_the_span_shader_table() {
+        let (McuCell::Measured { v6m: exact, .. }, McuCell::Measured { v6m: runs, .. }) =
+            (lookup_span("persp"), lookup_span("persp16"))
+        else {
+            panic!("no persp / persp16 rows in docs/mcu/tables.md");
+        };
+        // A division per pixel costs more than one reciprocal per 16.
+        assert!(exact > runs && runs > 0.0, "{exact} {runs}");
+        assert!(matches!(lookup_span("no-such-shader"), McuCell::Gap(_)));
+    }
 
     #[test]
     fn reads_the_generated_table() {

@@ -1,6 +1,6 @@
 //! Texture-vector recovery and perspective texture mapping.
 
-use super::mcu::NO_KERNEL;
+use super::mcu::{McuCell, NO_KERNEL, lookup_span};
 use super::routines_geom::{count_note, find, g, max_err, ns, per_scalar, rand_vec, v3};
 use super::{ErrStats, Pending, Rng, Row, Size, Table, Timing, bench, finish};
 use sightline::camera::Projection;
@@ -241,6 +241,18 @@ impl TexMethod {
     }
 }
 
+/// The Cortex-M cell of a method: the span shader's instructions per
+/// pixel from `docs/mcu/tables.md` where the QEMU fill benchmark has that
+/// shader (exact, 16-pixel runs, affine), else a gap.
+fn span_kernel(m: TexMethod) -> McuCell {
+    match m {
+        TexMethod::Exact => lookup_span("persp"),
+        TexMethod::Sub(16) => lookup_span("persp16"),
+        TexMethod::Affine => lookup_span("affine"),
+        _ => NO_KERNEL,
+    }
+}
+
 const TEX_METHODS: [TexMethod; 6] = [
     TexMethod::Exact,
     TexMethod::Sub(8),
@@ -393,7 +405,7 @@ fn tex_rows<S: Scalar>(size: Size, quads: &[Quad], texels: &[u32]) -> Vec<Row> {
                 repr: format!("{}, {}", S::NAME, m.name()),
                 err: ErrStats::of(&errs),
                 time: Timing::PENDING,
-                mcu: NO_KERNEL,
+                mcu: span_kernel(m),
                 note,
             };
             (row, b)
@@ -429,17 +441,37 @@ pub fn texture_mapping(size: Size) -> Table {
         .copied()
         .filter(|n| off(&format!("f32, sub{n}")) <= 10.0)
         .max();
+    // Span-loop cost on a Cortex-M0 (no divide instruction), where the
+    // choice matters; the host divides in hardware.
+    let mcu = |m: TexMethod| match span_kernel(m) {
+        McuCell::Measured { v6m, .. } => v6m,
+        McuCell::Gap(_) => f64::NAN,
+    };
+    let m0 = format!(
+        "On a Cortex-M0-class core, which has no divide instruction, the span loop costs {} \
+         instructions per pixel exact, {} with 16-pixel runs and {} affine \
+         (`docs/mcu/tables.md`, span loop only): {}× and {}× the exact cost. On this \
+         host, which divides in hardware, 16-pixel runs take {}× the exact time.",
+        g(mcu(TexMethod::Exact)),
+        g(mcu(TexMethod::Sub(16))),
+        g(mcu(TexMethod::Affine)),
+        g(mcu(TexMethod::Sub(16)) / mcu(TexMethod::Exact)),
+        g(mcu(TexMethod::Affine) / mcu(TexMethod::Exact)),
+        g(ns(&rows, "f32, sub16") / ns(&rows, "f32, exact")),
+    );
     let sub_advice = match longest_ok {
         Some(n) => format!(
             "Where the exact divide is too slow, {n}-pixel runs are the longest that keep \
-             more than 90% of pixels on the exact texel ({}% off) at {}× the exact time; \
-             polygons that face the camera are best left to the automatic choice.",
+             more than 90% of pixels on the exact texel ({}% off), at {}× the exact time on \
+             this host. {m0} Polygons that face the camera are best left to the automatic \
+             choice.",
             g(off(&format!("f32, sub{n}"))),
             g(ns(&rows, &format!("f32, sub{n}")) / ns(&rows, "f32, exact"))
         ),
-        None => "Every subdivision puts more than 10% of pixels on a wrong texel here, so \
-                 keep the exact divide for steep polygons."
-            .to_owned(),
+        None => format!(
+            "Every subdivision puts more than 10% of pixels on a wrong texel here, so \
+             keep the exact divide for steep polygons. {m0}"
+        ),
     };
     let recommendation = format!(
         "Exact per-pixel division is within {} texel of the exact texel index (mean {}; \

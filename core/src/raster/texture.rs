@@ -16,8 +16,8 @@
 //!   between them (the classic subdivided affine compromise). Each such
 //!   point costs one division-free reciprocal and two multiplies, and the
 //!   step over a full run is a shift: on ARMv6-M, which has no divide
-//!   instruction, 16-pixel runs cost 68 instructions per pixel where
-//!   exact division at both ends of every run cost 187 (`docs/mcu/`).
+//!   instruction, 16-pixel runs cost 69.5 instructions per pixel where
+//!   exact division at both ends of every run cost 186.6 (`docs/mcu/`).
 
 #[cfg(feature = "perspective")]
 use super::PERSPECTIVE_Q_BITS;
@@ -315,10 +315,10 @@ pub(crate) fn divide(v: &[i32; 3]) -> (i64, i64) {
 /// less than 2^−31 of it: by less than one unit of 2^−16 while |u| is
 /// below 2^15 texels (the i32 range of the varyings), where the result
 /// equals `divide`'s or is one unit larger, and an exact quotient stays
-/// exact. On ARMv6-M, which has no divide instruction, [`recip62`] costs
-/// five 32×32→64 multiplies and a table load, where `divide` is two
-/// 64-bit divisions (each some hundreds of instructions in
-/// compiler-builtins).
+/// exact. On ARMv6-M, which has no divide instruction, this is a table
+/// load, three 32-bit and five 64-bit multiplies (library calls there),
+/// where `divide` is two 64-bit divisions (each some hundreds of
+/// instructions in compiler-builtins).
 #[cfg(feature = "perspective")]
 #[inline]
 pub(crate) fn divide_approx(v: &[i32; 3]) -> (i64, i64) {

@@ -51,7 +51,7 @@ use crate::target::Target;
 use core::fmt;
 
 /// A clipped, projected polygon ready for
-/// [`fill_polygon`](crate::raster::fill_polygon): at most
+/// [`crate::raster::fill_polygon`]: at most
 /// [`MAX_CLIPPED_VERTICES`] vertices.
 pub type ScreenPolygon<const K: usize> = heapless::Vec<ScreenVertex<K>, MAX_CLIPPED_VERTICES>;
 

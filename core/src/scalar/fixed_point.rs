@@ -36,8 +36,13 @@ use fixed::types::extra::{LeEqU32, U8, U12, U16, U30};
 
 /// Saturating 32-bit fixed point with `Frac` fractional bits (1 ≤ `Frac` ≤ 30).
 ///
-/// The value is `bits / 2^Frac`. See the [module docs](self) for the exact
-/// rounding and overflow rules; in short, nothing ever wraps.
+/// The value is `bits / 2^Frac`. Nothing ever wraps, and the rules are the
+/// same bits on every target: `+ -` saturate; `*` rounds to nearest (ties
+/// toward +∞) and saturates; `/` rounds to nearest (ties away from zero)
+/// and saturates, division by zero giving `MAX`, `MIN` or `0` by the sign
+/// of the dividend; `sqrt` is an exact integer square root rounded to
+/// nearest; `sin`/`cos`/`atan2` are integer polynomials in Q2.30. The
+/// overflow policy as a whole: [`crate::scalar`].
 #[repr(transparent)]
 pub struct Fx<Frac> {
     bits: i32,

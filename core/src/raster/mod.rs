@@ -50,6 +50,8 @@
 mod depth;
 mod edge;
 mod gradient;
+#[cfg(any(feature = "perspective", feature = "raycast"))]
+pub(crate) mod persp_div;
 mod shader;
 #[cfg(feature = "texture")]
 mod texture;

@@ -1005,7 +1005,6 @@ fn saturated_gradient_does_not_overflow() {
     }
 }
 
-#[cfg(feature = "perspective")]
 proptest! {
     /// The reciprocal used at subdivided-run endpoints against the exact
     /// quotient in i128: never below it in magnitude, above it by less
@@ -1013,12 +1012,12 @@ proptest! {
     /// while the quotient is below 2^31 units, and then exact when q
     /// divides.
     #[test]
-    fn divide_approx_is_within_one_unit_of_the_exact_quotient(
+    fn perspective_divide_is_within_one_unit_of_the_exact_quotient(
         x in any::<i32>(),
         q in prop_oneof![1i32..64, 1i32..(1 << 24), any::<i32>()],
     ) {
-        use super::texture::{divide, divide_approx};
-        let (got, _) = divide_approx(&[x, 0, q]);
+        use super::persp_div::{divide, divide_exact};
+        let (got, _) = divide(&[x, 0, q]);
         let qq = q.max(1) as i128;
         let num = (x.unsigned_abs() as i128) << PERSPECTIVE_Q_BITS;
         let trunc = num / qq;
@@ -1028,7 +1027,7 @@ proptest! {
         prop_assert!(m - trunc <= trunc / (1 << 31) + 1, "{m} vs {trunc}");
         if trunc < (1 << 31) {
             prop_assert!(m - trunc <= 1);
-            prop_assert_eq!(divide(&[x, 0, q]).0.unsigned_abs() as i128, trunc);
+            prop_assert_eq!(divide_exact(&[x, 0, q]).0.unsigned_abs() as i128, trunc);
             if num % qq == 0 {
                 prop_assert_eq!(m, trunc);
             }
@@ -1036,10 +1035,9 @@ proptest! {
     }
 }
 
-#[cfg(feature = "perspective")]
 #[test]
 fn recip62_is_the_exact_ceiling() {
-    use super::texture::recip62;
+    use super::persp_div::recip62;
     let exact = |d: u32| (1u128 << 62).div_ceil(d as u128) as u64;
     // Both ends, every seed interval's ends and a stride through the rest.
     let mut ds: Vec<u32> = vec![1 << 30, (1 << 31) - 1];

@@ -158,7 +158,7 @@ impl<'a> TextureData<'a> {
 pub enum TextureMode {
     /// Linear in screen space: cheap, distorted on steep polygons.
     Affine,
-    /// Perspective-correct, one division per pixel.
+    /// Perspective-correct, one (reciprocal) division per pixel.
     Perspective,
     /// Affine where a triangle's depth ratio `z_max/z_min` is at most
     /// [`AUTO_AFFINE_MAX_DEPTH_RATIO`], perspective elsewhere.

@@ -309,7 +309,8 @@ impl<'a, S: Scalar> RayScene<'a, S> {
 impl<S: Scalar> RayScene<'_, S> {
     /// The texel the raster path's exact perspective mapping reads at
     /// pixel (px, py): the planes of `u·q`, `v·q` (16.16) and `q = near/z`
-    /// (8.24) over the 28.4 vertices, divided, floored.
+    /// (8.24) over the 28.4 vertices, divided as the shader divides
+    /// (`raster::persp_div::divide`), floored.
     fn perspective_uv(
         &self,
         obj: &RayObject<S>,
@@ -339,11 +340,11 @@ impl<S: Scalar> RayScene<'_, S> {
         }
         let range = (-(1 << 29), (1 << 29) - 1);
         let centre = (px as i32 * 16 + 8, py as i32 * 16 + 8);
-        let uq = screen_lerp_in(p, centre, vs[0], range)? as i64;
-        let vq = screen_lerp_in(p, centre, vs[1], range)? as i64;
-        let q = (screen_lerp_in(p, centre, vs[2], range)? as i64).max(1);
-        let u = (uq << PERSPECTIVE_Q_BITS) / q;
-        let v = (vq << PERSPECTIVE_Q_BITS) / q;
+        let uq = screen_lerp_in(p, centre, vs[0], range)?;
+        let vq = screen_lerp_in(p, centre, vs[1], range)?;
+        let q = screen_lerp_in(p, centre, vs[2], range)?;
+        // The raster shader's divide, so both paths read the same texel.
+        let (u, v) = crate::raster::persp_div::divide(&[uq, vq, q]);
         let texel =
             |x: i64| (x >> VARYING_FRAC_BITS).clamp(i32::MIN as i64, i32::MAX as i64) as i32;
         Some((texel(u), texel(v)))

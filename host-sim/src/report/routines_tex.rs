@@ -442,7 +442,7 @@ pub fn texture_mapping(size: Size) -> Table {
         .filter(|n| off(&format!("f32, sub{n}")) <= 10.0)
         .max();
     // Span-loop cost on a Cortex-M0 (no divide instruction), where the
-    // choice matters; the host divides in hardware.
+    // choice matters most.
     let mcu = |m: TexMethod| match span_kernel(m) {
         McuCell::Measured { v6m, .. } => v6m,
         McuCell::Gap(_) => f64::NAN,
@@ -451,7 +451,7 @@ pub fn texture_mapping(size: Size) -> Table {
         "On a Cortex-M0-class core, which has no divide instruction, the span loop costs {} \
          instructions per pixel exact, {} with 16-pixel runs and {} affine \
          (`docs/mcu/tables.md`, span loop only): {}× and {}× the exact cost. On this \
-         host, which divides in hardware, 16-pixel runs take {}× the exact time.",
+         host 16-pixel runs take {}× the exact time.",
         g(mcu(TexMethod::Exact)),
         g(mcu(TexMethod::Sub(16))),
         g(mcu(TexMethod::Affine)),

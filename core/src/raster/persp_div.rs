@@ -6,26 +6,6 @@
 
 use super::PERSPECTIVE_Q_BITS;
 
-/// The exact quotients `((u·q) << 24) / q` in i64 (truncated toward
-/// zero): the reference [`divide`] is tested against (it was the
-/// shaders' division until the reciprocal replaced it).
-#[cfg(all(
-    test,
-    feature = "gouraud",
-    feature = "texture",
-    feature = "perspective",
-    feature = "depth"
-))]
-pub(crate) fn divide_exact(v: &[i32; 3]) -> (i64, i64) {
-    // q ≥ 1 guards the division; |u·q| < 2^31, so the shift stays below
-    // 2^55.
-    let q = (v[2] as i64).max(1);
-    (
-        ((v[0] as i64) << PERSPECTIVE_Q_BITS) / q,
-        ((v[1] as i64) << PERSPECTIVE_Q_BITS) / q,
-    )
-}
-
 /// (u, v) in 16.16 from (u·q, v·q) in 16.16 and q = near/z in 8.24, with
 /// one reciprocal instead of two divisions: `r = ⌈2^62 / q'⌉` for `q' = q·2^s`
 /// normalised to `[2^30, 2^31)`, then `|u·q|·r >> (38 − s)` with the sign
@@ -33,7 +13,7 @@ pub(crate) fn divide_exact(v: &[i32; 3]) -> (i64, i64) {
 /// the magnitude is never below the exact quotient's and exceeds it by
 /// less than 2^−31 of it: by less than one unit of 2^−16 while |u| is
 /// below 2^15 texels (the i32 range of the varyings), where the result
-/// equals [`divide_exact`]'s or is one unit larger, and an exact quotient stays
+/// equals the exact quotient's or is one unit larger, and an exact quotient stays
 /// exact. On ARMv6-M, which has no divide instruction, this is a table
 /// load, three 32-bit and five 64-bit multiplies (library calls there),
 /// where exact division is two 64-bit divisions (each some hundreds of

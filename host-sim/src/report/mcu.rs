@@ -32,23 +32,27 @@ const TABLES_MD: &str = include_str!("../../../docs/mcu/tables.md");
 /// per-row set-up, and independent of the pipeline's scalar (the
 /// rasteriser is integer). A gap if the table has no such row.
 pub fn lookup_span(mode: &'static str) -> McuCell {
-    let key = format!("| {mode} |");
-    for line in TABLES_MD.lines() {
-        if let Some(rest) = line.strip_prefix(&key) {
-            let cells: Vec<f64> = rest
-                .split('|')
-                .filter_map(|c| c.trim().parse::<f64>().ok())
-                .collect();
-            if cells.len() >= 2 {
-                return McuCell::Measured {
-                    kernel: mode,
-                    v6m: cells[0],
-                    v7em: cells[1],
-                };
-            }
-        }
+    match row_numbers(TABLES_MD, &format!("| {mode} |"), 2) {
+        Some(cells) => McuCell::Measured {
+            kernel: mode,
+            v6m: cells[0],
+            v7em: cells[1],
+        },
+        None => McuCell::Gap("—, not measured: no such span shader in docs/mcu/tables.md"),
     }
-    McuCell::Gap("—, not measured: no such span shader in docs/mcu/tables.md")
+}
+
+/// The numeric cells of the first row of the markdown table in `md` that
+/// starts with `key`, if it has at least `min` of them.
+fn row_numbers(md: &str, key: &str, min: usize) -> Option<Vec<f64>> {
+    md.lines().find_map(|line| {
+        let cells: Vec<f64> = line
+            .strip_prefix(key)?
+            .split('|')
+            .filter_map(|c| c.trim().parse::<f64>().ok())
+            .collect();
+        (cells.len() >= min).then_some(cells)
+    })
 }
 
 /// The usual gap: the QEMU harness has no kernel for this routine.
@@ -64,23 +68,14 @@ pub fn lookup(kernel: &'static str, repr: &str) -> McuCell {
         "f64" => return McuCell::Gap("—, not measured: f64 is the host reference"),
         _ => return McuCell::Gap("—, not measured: representation not in the QEMU harness"),
     };
-    let key = format!("| `{kernel}` |");
-    for line in KERNELS_MD.lines() {
-        if let Some(rest) = line.strip_prefix(&key) {
-            let cells: Vec<f64> = rest
-                .split('|')
-                .filter_map(|c| c.trim().parse::<f64>().ok())
-                .collect();
-            if cells.len() >= 4 {
-                return McuCell::Measured {
-                    kernel,
-                    v6m: cells[col],
-                    v7em: cells[col + 1],
-                };
-            }
-        }
+    match row_numbers(KERNELS_MD, &format!("| `{kernel}` |"), 4) {
+        Some(cells) => McuCell::Measured {
+            kernel,
+            v6m: cells[col],
+            v7em: cells[col + 1],
+        },
+        None => NO_KERNEL,
     }
-    NO_KERNEL
 }
 
 impl McuCell {

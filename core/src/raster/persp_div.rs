@@ -7,18 +7,20 @@
 use super::PERSPECTIVE_Q_BITS;
 
 /// (u, v) in 16.16 from (u·q, v·q) in 16.16 and q = near/z in 8.24, with
-/// one reciprocal instead of two divisions: `r = ⌈2^62 / q'⌉` for `q' = q·2^s`
-/// normalised to `[2^30, 2^31)`, then `|u·q|·r >> (38 − s)` with the sign
-/// of `u·q` (truncation toward zero, as the division). `r` rounds up, so
-/// the magnitude is never below the exact quotient's and exceeds it by
-/// less than 2^−31 of it: by less than one unit of 2^−16 while |u| is
-/// below 2^15 texels (the i32 range of the varyings), where the result
-/// equals the exact quotient's or is one unit larger, and an exact quotient stays
-/// exact. On ARMv6-M, which has no divide instruction, this is a table
-/// load, three 32-bit and five 64-bit multiplies (library calls there),
-/// where exact division is two 64-bit divisions (each some hundreds of
-/// instructions in compiler-builtins). The ray caster's scene path calls
-/// it too, so both paths read the same texel.
+/// one reciprocal instead of two divisions: `r = ⌈2^62 / q'⌉` for
+/// `q' = q·2^s` normalised to `[2^30, 2^31)`, then `|u·q|·r >> (38 − s)`
+/// with the sign of `u·q` (truncation toward zero, as a division). `r`
+/// rounds up, so the magnitude is never below the exact quotient's and
+/// exceeds it by less than 2^−31 of it: by less than one unit of 2^−16
+/// while |u| is below 2^15 texels (the i32 range of the varyings), where
+/// the result equals the truncated exact quotient or is one unit larger,
+/// and an exact quotient stays exact (test
+/// `perspective_divide_is_within_one_unit_of_the_exact_quotient`). q ≤ 0
+/// is taken as 1. On ARMv6-M, which has no divide instruction, this is a
+/// table load, three 32-bit and five 64-bit multiplies (library calls
+/// there), where exact division is two 64-bit divisions (each some
+/// hundreds of instructions in compiler-builtins). The ray caster's scene
+/// path calls it too, so both paths read the same texel.
 #[inline]
 pub(crate) fn divide(v: &[i32; 3]) -> (i64, i64) {
     // q in [1, 2^31); s in [0, 30].

@@ -26,7 +26,7 @@
 
 use sightline::scene::builtin;
 use sightline_sim::compare_images;
-use sightline_sim::image::{read_png_rgb8, write_rgb8_png};
+use sightline_sim::image::{Image, read_png_rgb8, write_rgb8_png};
 use sightline_sim::render::{self, Method, ScalarKind};
 use std::path::PathBuf;
 
@@ -75,9 +75,45 @@ fn affine_corridor_visibly_differs_from_the_exact_image() {
     assert!(ag.equal_percent() < 70.0, "{ag:?}");
 }
 
+/// Compares `img` with the golden PNG at `path` (96×72), or writes it
+/// there when blessing. A difference leaves the new image beside the old
+/// one as `.png.new` and is recorded in `failures`.
+fn check_golden(path: &std::path::Path, img: &Image, bless: bool, failures: &mut Vec<String>) {
+    let rgb = img.rgb8();
+    let dir = path.parent().unwrap();
+    if bless {
+        std::fs::create_dir_all(dir).unwrap();
+        write_rgb8_png(path, img.width, img.height, &rgb).unwrap();
+        return;
+    }
+    let same = read_png_rgb8(path).is_ok_and(|g| (g.width, g.height) == (96, 72) && g.rgb == rgb);
+    if !same {
+        let new = path.with_extension("png.new");
+        std::fs::create_dir_all(dir).unwrap();
+        write_rgb8_png(&new, img.width, img.height, &rgb).unwrap();
+        failures.push(format!(
+            "{} differs (see {})",
+            path.display(),
+            new.display()
+        ));
+    }
+}
+
+fn blessing() -> bool {
+    std::env::var_os("SIGHTLINE_BLESS").is_some_and(|v| v == "1")
+}
+
+fn assert_no_failures(failures: &[String]) {
+    assert!(
+        failures.is_empty(),
+        "golden images differ; check the .png.new files and bless with \
+         SIGHTLINE_BLESS=1 if the change is deliberate:\n{failures:#?}"
+    );
+}
+
 #[test]
 fn golden_images() {
-    let bless = std::env::var_os("SIGHTLINE_BLESS").is_some_and(|v| v == "1");
+    let bless = blessing();
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("images");
     let mut failures = Vec::new();
     for scene in builtin::ALL {
@@ -88,35 +124,15 @@ fn golden_images() {
                 } else {
                     "ray"
                 };
-                let dir = root.join(scene.name);
-                let path = dir.join(format!("{m}-{}.png", scalar.name()));
+                let path = root
+                    .join(scene.name)
+                    .join(format!("{m}-{}.png", scalar.name()));
                 let img = render::render(scene, method, scalar, 96, 72, false).unwrap();
-                let rgb = img.rgb8();
-                if bless {
-                    std::fs::create_dir_all(&dir).unwrap();
-                    write_rgb8_png(&path, img.width, img.height, &rgb).unwrap();
-                    continue;
-                }
-                let same = read_png_rgb8(&path)
-                    .is_ok_and(|g| (g.width, g.height) == (96, 72) && g.rgb == rgb);
-                if !same {
-                    let new = path.with_extension("png.new");
-                    std::fs::create_dir_all(&dir).unwrap();
-                    write_rgb8_png(&new, img.width, img.height, &rgb).unwrap();
-                    failures.push(format!(
-                        "{} differs (see {})",
-                        path.display(),
-                        new.display()
-                    ));
-                }
+                check_golden(&path, &img, bless, &mut failures);
             }
         }
     }
-    assert!(
-        failures.is_empty(),
-        "golden images differ; check the .png.new files and bless with \
-         SIGHTLINE_BLESS=1 if the change is deliberate:\n{failures:#?}"
-    );
+    assert_no_failures(&failures);
 }
 
 /// The column caster's scene `maze` (not a `Scene`: a grid map), golden
@@ -124,7 +140,7 @@ fn golden_images() {
 /// blessed the same way as the other golden images.
 #[test]
 fn golden_maze() {
-    let bless = std::env::var_os("SIGHTLINE_BLESS").is_some_and(|v| v == "1");
+    let bless = blessing();
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("images")
         .join(render::MAZE);
@@ -132,27 +148,7 @@ fn golden_maze() {
     for scalar in [ScalarKind::F32, ScalarKind::Fixed] {
         let path = dir.join(format!("column-{}.png", scalar.name()));
         let img = render::render_maze(scalar, 96, 72).unwrap();
-        let rgb = img.rgb8();
-        if bless {
-            std::fs::create_dir_all(&dir).unwrap();
-            write_rgb8_png(&path, img.width, img.height, &rgb).unwrap();
-            continue;
-        }
-        let same =
-            read_png_rgb8(&path).is_ok_and(|g| (g.width, g.height) == (96, 72) && g.rgb == rgb);
-        if !same {
-            let new = path.with_extension("png.new");
-            std::fs::create_dir_all(&dir).unwrap();
-            write_rgb8_png(&new, img.width, img.height, &rgb).unwrap();
-            failures.push(format!(
-                "{} differs (see {})",
-                path.display(),
-                new.display()
-            ));
-        }
+        check_golden(&path, &img, bless, &mut failures);
     }
-    assert!(
-        failures.is_empty(),
-        "golden images differ; bless with SIGHTLINE_BLESS=1 if deliberate:\n{failures:#?}"
-    );
+    assert_no_failures(&failures);
 }

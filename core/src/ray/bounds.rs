@@ -277,7 +277,7 @@ impl<S: Scalar> BoundingSphere<S> {
             return Err(BoundingSphereError::NonFinite);
         }
         let dist = |a: Vec3<S>, b: Vec3<S>| -> Result<S, BoundingSphereError> {
-            Ok(length(sub3(a, b).ok_or(BoundingSphereError::Overflow)?))
+            Ok(sub3(a, b).ok_or(BoundingSphereError::Overflow)?.length())
         };
         let farthest = |from: Vec3<S>| -> Result<Vec3<S>, BoundingSphereError> {
             let (mut best, mut bd) = (from, S::ZERO);
@@ -346,24 +346,15 @@ impl<S: Scalar> BoundingVolume<S> for BoundingSphere<S> {
         let Some(d) = (d / d.max_abs()).try_normalize() else {
             return true;
         };
-        // Lengths, not squares: in fixed point a small r² would vanish.
+        // Lengths (`Vec3::length` scales by the largest component), not
+        // squares: in fixed point a small r² would vanish.
         let pad = S::EPSILON * S::from_i32(8);
         let b = f.dot(d);
         let l = f - d * b;
-        if length(l) > r + pad {
+        if l.length() > r + pad {
             return false; // the line passes outside
         }
         // Origin outside and the ray pointing away: both roots negative.
-        !(length(f) > r + pad && b > pad)
+        !(f.length() > r + pad && b > pad)
     }
-}
-
-/// `|v|` computed as `m·|v/m|`, `m = ‖v‖_∞`, so that nothing small is
-/// squared (fixed point would lose it) and nothing large overflows.
-fn length<S: Scalar>(v: Vec3<S>) -> S {
-    let m = v.max_abs();
-    if m == S::ZERO {
-        return S::ZERO;
-    }
-    m * (v / m).length()
 }

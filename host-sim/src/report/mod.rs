@@ -71,6 +71,25 @@ pub struct Row {
     pub note: String,
 }
 
+impl Row {
+    /// A row measured from per-input errors, its time still to come from
+    /// the round-robin timing ([`Timing::PENDING`]).
+    pub fn new(
+        repr: impl Into<String>,
+        errs: &[f64],
+        mcu: mcu::McuCell,
+        note: impl Into<String>,
+    ) -> Self {
+        Self {
+            repr: repr.into(),
+            err: ErrStats::of(errs),
+            time: Timing::PENDING,
+            mcu,
+            note: note.into(),
+        }
+    }
+}
+
 /// One routine's table, plot and recommendation.
 #[derive(Clone, Debug)]
 pub struct Table {

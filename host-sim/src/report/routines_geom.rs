@@ -120,13 +120,12 @@ fn transform_row<S: Scalar>(size: Size, c: &TransformCase) -> Pending<'static> {
         })
         .collect();
     let b = bench(size, pts, 1.0, move |&(i, p)| mats[i].transform_point3(p));
-    let row = Row {
-        repr: S::NAME.into(),
-        err: ErrStats::of(&errs),
-        time: Timing::PENDING,
-        mcu: mcu::lookup("transform_point3", S::NAME),
-        note: String::new(),
-    };
+    let row = Row::new(
+        S::NAME,
+        &errs,
+        mcu::lookup("transform_point3", S::NAME),
+        String::new(),
+    );
     (row, b)
 }
 
@@ -155,13 +154,12 @@ fn transform_mixed_row(size: Size, c: &TransformCase) -> Pending<'static> {
         })
         .collect();
     let b = bench(size, pts, 1.0, move |&(i, p)| mats[i].transform(p));
-    let row = Row {
-        repr: "Q2.30×Q16.16".into(),
-        err: ErrStats::of(&errs),
-        time: Timing::PENDING,
-        mcu: NO_KERNEL,
-        note: "report-local kernel, i64 accumulation".into(),
-    };
+    let row = Row::new(
+        "Q2.30×Q16.16",
+        &errs,
+        NO_KERNEL,
+        "report-local kernel, i64 accumulation",
+    );
     (row, b)
 }
 
@@ -279,13 +277,12 @@ fn projection_row<S: Scalar>(size: Size, pts: &[Vec3<f64>]) -> Pending<'static> 
         }
     }
     let b = bench(size, ps, 1.0, move |&p| proj.project(p));
-    let row = Row {
-        repr: S::NAME.into(),
-        err: ErrStats::of(&errs),
-        time: Timing::PENDING,
-        mcu: NO_KERNEL,
-        note: count_note(failed, pts.len(), "not projected"),
-    };
+    let row = Row::new(
+        S::NAME,
+        &errs,
+        NO_KERNEL,
+        count_note(failed, pts.len(), "not projected"),
+    );
     (row, b)
 }
 
@@ -570,13 +567,12 @@ fn camera_row<S: Scalar>(size: Size, cases: &[CameraCase]) -> Pending<'static> {
     let b = bench(size, inputs, 1.0, |&(p, u, v, w)| {
         Camera::from_vectors(p, u, v, w).is_ok()
     });
-    let row = Row {
-        repr: S::NAME.into(),
-        err: ErrStats::of(&errs),
-        time: Timing::PENDING,
-        mcu: NO_KERNEL,
-        note: count_note(rejected, cases.len(), "rejected"),
-    };
+    let row = Row::new(
+        S::NAME,
+        &errs,
+        NO_KERNEL,
+        count_note(rejected, cases.len(), "rejected"),
+    );
     (row, b)
 }
 

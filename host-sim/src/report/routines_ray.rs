@@ -99,13 +99,7 @@ fn plane_row<S: Scalar>(size: Size, cases: &[PlaneCase]) -> Pending<'static> {
     if missed > 0 {
         note.push_str(&format!("; {}", count_note(missed, cases.len(), "missed")));
     }
-    let row = Row {
-        repr: S::NAME.into(),
-        err: ErrStats::of(&errs),
-        time: Timing::PENDING,
-        mcu: NO_KERNEL,
-        note,
-    };
+    let row = Row::new(S::NAME, &errs, NO_KERNEL, note);
     (row, b)
 }
 
@@ -439,13 +433,7 @@ fn sphere_row<S: Scalar>(size: Size, cases: &[SphereCase]) -> Pending<'static> {
     if missed > 0 {
         note.push_str(&format!("; {}", count_note(missed, cases.len(), "missed")));
     }
-    let row = Row {
-        repr: S::NAME.into(),
-        err: ErrStats::of(&errs),
-        time: Timing::PENDING,
-        mcu: NO_KERNEL,
-        note,
-    };
+    let row = Row::new(S::NAME, &errs, NO_KERNEL, note);
     (row, b)
 }
 

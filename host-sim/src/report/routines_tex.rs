@@ -2,7 +2,7 @@
 
 use super::mcu::{McuCell, NO_KERNEL, lookup_span};
 use super::routines_geom::{count_note, find, g, max_err, ns, per_scalar, rand_vec, v3};
-use super::{ErrStats, Pending, Rng, Row, Size, Table, Timing, bench, finish};
+use super::{Pending, Rng, Row, Size, Table, bench, finish};
 use sightline::camera::Projection;
 use sightline::math::{Vec2, Vec3};
 use sightline::pipeline::{Pipeline, Uv, UvPerspective, Vertex};
@@ -105,13 +105,12 @@ fn tv_row<S: Scalar>(size: Size, cases: &[TvCase]) -> Pending<'static> {
         }
     }
     let b = bench(size, inputs, 1.0, setup);
-    let row = Row {
-        repr: S::NAME.into(),
-        err: ErrStats::of(&errs),
-        time: Timing::PENDING,
-        mcu: NO_KERNEL,
-        note: count_note(rejected, cases.len(), "rejected"),
-    };
+    let row = Row::new(
+        S::NAME,
+        &errs,
+        NO_KERNEL,
+        count_note(rejected, cases.len(), "rejected"),
+    );
     (row, b)
 }
 
@@ -401,13 +400,12 @@ fn tex_rows<S: Scalar>(size: Size, quads: &[Quad], texels: &[u32]) -> Vec<Row> {
             if failed > 0 {
                 note.push_str(&format!("; {failed} triangles not drawn"));
             }
-            let row = Row {
-                repr: format!("{}, {}", S::NAME, m.name()),
-                err: ErrStats::of(&errs),
-                time: Timing::PENDING,
-                mcu: span_kernel(m),
+            let row = Row::new(
+                format!("{}, {}", S::NAME, m.name()),
+                &errs,
+                span_kernel(m),
                 note,
-            };
+            );
             (row, b)
         })
         .collect();

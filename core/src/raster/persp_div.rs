@@ -55,11 +55,13 @@ const RECIP_SEED: [u16; 256] = {
 /// `(2^31, 2^32]`), without a division: a table seed good to 8 bits, two
 /// Newton steps `x ← x + x·(2^62 − d·x)/2^62` (each doubles the correct
 /// bits and, truncating, stays at or below the true reciprocal), then
-/// unit steps up to the ceiling. Exact for every `d`: checked
-/// exhaustively for all 2^30 divisors on the host (at most 3 unit steps
-/// were needed; the code takes 4), and on a sample by the unit test
-/// `recip62_is_the_exact_ceiling`. Any other `d` is clamped into the range
-/// first.
+/// unit steps up to the ceiling. Exact for every `d`: checked for all
+/// 2^30 divisors by the release-mode test `recip62_exhaustive`, which
+/// `.ci/run` runs (`cargo test --release -p sightline --features full
+/// --lib recip62_exhaustive -- --ignored`), and on a sample by
+/// `recip62_is_the_exact_ceiling` in every test run. At most 3 unit steps
+/// were needed (an instrumented copy on the host); the code takes 4. Any
+/// other `d` is clamped into the range first.
 #[inline]
 pub(crate) fn recip62(d: u32) -> u64 {
     let d = d.clamp(1 << 30, (1 << 31) - 1);

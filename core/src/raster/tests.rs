@@ -1041,6 +1041,20 @@ proptest! {
     }
 }
 
+/// Every one of the 2^30 divisors (about 10 s in release, far longer in a
+/// debug build, hence opt-in):
+/// `cargo test --release -p sightline --features full --lib recip62_exhaustive -- --ignored`.
+/// The sampled test above runs by default.
+#[test]
+#[ignore = "2^30 divisors: run in release with --ignored (about 10 s)"]
+fn recip62_exhaustive() {
+    use super::persp_div::recip62;
+    for d in (1u32 << 30)..(1u32 << 31) {
+        let exact = (1u128 << 62).div_ceil(d as u128) as u64;
+        assert_eq!(recip62(d), exact, "d = {d}");
+    }
+}
+
 #[test]
 fn recip62_is_the_exact_ceiling() {
     use super::persp_div::recip62;

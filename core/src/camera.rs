@@ -215,6 +215,16 @@ impl<S: Scalar> Camera<S> {
         ))
     }
 
+    /// The same camera in scalar `T`, each coefficient rounded: solve a
+    /// general camera in `f32` or `f64`, then render in fixed point.
+    #[must_use]
+    pub fn cast<T: Scalar>(&self) -> Camera<T> {
+        Camera {
+            world_to_view: self.world_to_view.cast(),
+            position: self.position.cast(),
+        }
+    }
+
     /// The world→view transform.
     #[must_use]
     pub fn world_to_view(&self) -> &Affine3<S> {

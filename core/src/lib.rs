@@ -20,7 +20,7 @@
 //! | [`texture`] | texture-mapping vectors (axis-edge fast path, any polygon via [`solve`]), the per-pixel perspective mapping, and the affine/perspective choice from a distortion bound |
 //! | [`target`] | span sinks: slice framebuffer with stride, bands for strip rendering, embedded-graphics `DrawTarget` adapter |
 //! | [`ray`] | screen→world: rays from a ray-casting camera, planes, polygons with four inclusion tests, spheres, watertight triangles, nearest hit, bounding boxes and spheres, a uniform grid, and a column caster over 2D grid maps |
-//! | [`scene`] | one borrowed scene description (meshes, poses, materials, light, camera) rendered by both paths with one material model; built-in demo scenes as static data |
+//! | [`scene`] | one borrowed scene description (meshes, poses, materials, light, camera), its prepared form in the render scalar, the raster renderer over it and the ray path, with one material model; built-in demo scenes as static data |
 //!
 //! ## Coordinate conventions
 //!
@@ -56,12 +56,13 @@
 //! the scan converter with [`Flat`](raster::Flat) and
 //! [`NoDepth`](raster::NoDepth), targets, scene descriptions). Generic code
 //! costs nothing until it is instantiated; the features remove what
-//! [`scene::render_raster`] would otherwise link for every material.
+//! the scene renderer ([`scene::Renderer`]) would otherwise link for every
+//! material.
 //!
 //! | feature | adds | needs |
 //! |---|---|---|
 //! | `depth` | `raster::DepthBuffer` | |
-//! | `gouraud` | `raster::Gouraud`; Gouraud materials in [`scene::render_raster`] | |
+//! | `gouraud` | `raster::Gouraud`; Gouraud materials in [`scene::Renderer`] | |
 //! | `texture` | `texture`, the affine texture shaders; affine texture materials | |
 //! | `perspective` | `raster::PerspectiveTexture`; perspective and `Auto` texture materials | `texture` |
 //! | `clip-far` | clipping at the far plane (without it, geometry beyond `far` is drawn, its depth key saturated at the far value) | |

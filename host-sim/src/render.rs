@@ -3,9 +3,11 @@
 use crate::image::Image;
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
+use sightline::math::Vec3;
+use sightline::pipeline::MeshVertex;
 use sightline::raster::DepthBuffer;
 use sightline::scalar::{I16F16, Scalar};
-use sightline::scene::{Color, RayScene, Scene, SceneError, render_raster};
+use sightline::scene::{Color, PreparedObject, RayScene, Renderer, Scene, SceneError};
 use sightline::target::Framebuffer;
 
 /// Which path renders.
@@ -44,7 +46,14 @@ impl ScalarKind {
 /// # Errors
 /// The scene's [`SceneError`].
 pub fn raster<S: Scalar>(scene: &Scene<'_>, width: u16, height: u16) -> Result<Image, SceneError> {
-    let view = scene.view::<S>(width, height)?;
+    let need = scene.storage();
+    let mut vec3s = vec![Vec3::<S>::ZERO; need.vec3s];
+    let mut objects = vec![PreparedObject::EMPTY; need.objects];
+    let objects = scene.prepare(&mut vec3s, &mut objects)?;
+    let renderer = Renderer::<S>::new(scene, width, height)?;
+    let mut scratch = vec![MeshVertex::default(); need.vertices];
+    let frame = renderer.project(objects, &mut scratch)?;
+
     let mut img = Image::new(width, height, scene.background);
     let mut keys = vec![u16::MAX; img.pixels.len()];
     let w = width as usize;
@@ -52,7 +61,7 @@ pub fn raster<S: Scalar>(scene: &Scene<'_>, width: u16, height: u16) -> Result<I
         .map_err(|_| SceneError::BadProjection)?;
     let mut depth =
         DepthBuffer::new(&mut keys, width, height, w, 0).map_err(|_| SceneError::BadProjection)?;
-    render_raster(scene, &view, &mut fb, &mut depth)?;
+    frame.draw(&mut fb, &mut depth);
     Ok(img)
 }
 

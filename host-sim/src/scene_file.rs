@@ -241,6 +241,25 @@ pub struct OwnedMesh {
     /// Texture coordinates in [0, 1] (OBJ convention, v up), converted to
     /// texels once the texture size is known.
     pub texcoords: Option<Vec<[f32; 2]>>,
+    /// Every edge is used once in each direction: a closed, consistently
+    /// oriented surface (its back faces are culled).
+    pub closed: bool,
+}
+
+/// Whether every directed edge `(a, b)` of `tris` appears exactly once and
+/// its reverse `(b, a)` too: the mesh is closed and consistently wound.
+#[must_use]
+pub fn is_closed(tris: &[[u16; 3]]) -> bool {
+    let mut edges = std::collections::HashMap::with_capacity(tris.len() * 3);
+    for t in tris {
+        for i in 0..3 {
+            let e = (t[i], t[(i + 1) % 3]);
+            if e.0 == e.1 || edges.insert(e, ()).is_some() {
+                return false;
+            }
+        }
+    }
+    !tris.is_empty() && edges.keys().all(|&(a, b)| edges.contains_key(&(b, a)))
 }
 
 enum MeshSource {
@@ -574,6 +593,7 @@ pub fn load_obj(path: &Path, scale: f32) -> Result<OwnedMesh, FileError> {
     Ok(OwnedMesh {
         positions,
         scale: step * scale,
+        closed: is_closed(&triangles),
         triangles,
         normals: Some(normals),
         texcoords: (all_tc && tcs.len() == pos.len()).then_some(tcs),
@@ -635,6 +655,7 @@ impl LoadedScene {
                 let base = match &o.mesh {
                     MeshSource::Builtin(m) => **m,
                     MeshSource::Owned(m) => MeshData {
+                        closed: m.closed,
                         positions: &m.positions,
                         scale: m.scale,
                         triangles: &m.triangles,

@@ -130,7 +130,14 @@ impl<S: Scalar + 'static> RayWorkload<S> {
             .iter()
             .map(|&p| to_world.transform_point3(p))
             .collect();
-        let indices: &'static [[u32; 3]] = Box::leak(model.triangles.clone().into_boxed_slice());
+        let indices: &'static [[u32; 3]] = Box::leak(
+            model
+                .triangles
+                .iter()
+                .map(|t| t.map(u32::from))
+                .collect::<Vec<_>>()
+                .into_boxed_slice(),
+        );
         // The W1 rule exactly as the raster workload evaluates it.
         let m = camera.object_to_view(&pose);
         let k3 = S::from_f64(1.0 / 3f64.sqrt());

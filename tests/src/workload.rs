@@ -10,12 +10,13 @@
 //! `Pose { origin: (0, 0, −2.6), yaw: 2πk/N }` seen by that camera.
 
 use crate::obj::{self, Mesh};
-use embedded_graphics::pixelcolor::Rgb565;
+use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 use sightline::camera::{Camera, Projection};
 use sightline::math::Vec3;
-use sightline::pipeline::{Cull, Intensity, MeshVertex, Pipeline, Vertex};
-use sightline::raster::{DepthBuffer, FillOutcome, Flat, Gouraud, fill_polygon};
+use sightline::pipeline::MeshVertex;
+use sightline::raster::{DepthBuffer, Shade};
 use sightline::scalar::Scalar;
+use sightline::scene::{Light, Material, PreparedMesh, PreparedObject, Renderer, View};
 use sightline::target::Framebuffer;
 use sightline::transform::{Euler, Pose};
 
@@ -43,10 +44,13 @@ pub enum Shading {
     Gouraud,
 }
 
-/// The workload's grey: `v = floor(255·I)`, RGB565 `(v>>3, v>>2, v>>3)`.
+/// The workload's grey for `v = floor(255·I)` as sightline's material
+/// model makes it: white scaled by `v/255` per channel, rounded down
+/// (WORKLOADS.md's `(v>>3, v>>2, v>>3)` differs by at most one step per
+/// channel and costs the same).
 #[must_use]
 pub fn grey565(v: u8) -> Rgb565 {
-    Rgb565::new(v >> 3, v >> 2, v >> 3)
+    Rgb565::WHITE.scale(v)
 }
 
 /// The bunny, normalised, with face and vertex normals (computed in f64
@@ -56,7 +60,7 @@ pub struct Model<S> {
     /// Normalised positions.
     pub positions: Vec<Vec3<S>>,
     /// Triangles (CCW outward).
-    pub triangles: Vec<[u32; 3]>,
+    pub triangles: Vec<[u16; 3]>,
     /// Unit face normals.
     pub face_normals: Vec<Vec3<S>>,
     /// Unit vertex normals (area-weighted).
@@ -110,7 +114,11 @@ impl<S: Scalar> Model<S> {
         }
         Self {
             positions: p.into_iter().map(v3).collect(),
-            triangles: mesh.triangles.clone(),
+            triangles: mesh
+                .triangles
+                .iter()
+                .map(|t| t.map(|k| u16::try_from(k).expect("fewer than 65536 vertices")))
+                .collect(),
             face_normals,
             vertex_normals: vn.into_iter().map(|n| v3(normalise(n))).collect(),
         }
@@ -130,19 +138,16 @@ fn v3<S: Scalar>(a: [f64; 3]) -> Vec3<S> {
     Vec3::new(S::from_f64(a[0]), S::from_f64(a[1]), S::from_f64(a[2]))
 }
 
-/// Everything a frame needs besides the buffers: the model, the pipeline,
-/// the camera and per-frame scratch (no allocation per frame).
+/// Everything a frame needs besides the buffers: the prepared bunny, the
+/// renderer (camera, projection, clip volume, light) and the per-frame
+/// scratch, set up once; frames go through the public prepared-scene API
+/// ([`Renderer::project`], [`sightline::scene::Frame::draw`]) as every
+/// other caller's do.
 #[derive(Debug)]
-pub struct Workload<S> {
-    model: Model<S>,
-    shading: Shading,
-    pipeline: Pipeline<S>,
-    camera: Camera<S>,
-    ramp: [Rgb565; 256],
-    flat: Vec<Vertex<S, ()>>,
-    lit: Vec<Vertex<S, Intensity<S>>>,
-    flat_proj: Vec<MeshVertex<0>>,
-    lit_proj: Vec<MeshVertex<1>>,
+pub struct Workload<'m, S> {
+    renderer: Renderer<S>,
+    object: [PreparedObject<'m, S>; 1],
+    scratch: Vec<MeshVertex<1>>,
 }
 
 /// The colour and depth buffers of one 320×240 frame.
@@ -164,35 +169,44 @@ impl Default for Frame {
     }
 }
 
-impl<S: Scalar> Workload<S> {
+impl<'m, S: Scalar> Workload<'m, S> {
     /// Sets up W1 or W2 for `model`.
     ///
     /// # Panics
     /// Never for the constants used here (the pipeline parameters are
-    /// valid).
+    /// valid) and a model from [`Model::from_mesh`].
     #[must_use]
-    pub fn new(model: Model<S>, shading: Shading) -> Self {
+    pub fn new(model: &'m Model<S>, shading: Shading) -> Self {
+        let (faces, verts, material): (&[Vec3<S>], &[Vec3<S>], _) = match shading {
+            Shading::Flat => (&model.face_normals, &[], Material::Flat(Rgb565::WHITE)),
+            Shading::Gouraud => (&[], &model.vertex_normals, Material::Gouraud(Rgb565::WHITE)),
+        };
+        let mesh = PreparedMesh::new(&model.positions, &model.triangles, faces, verts, &[], true)
+            .expect("the model is a valid closed mesh");
+        let object = PreparedObject::new(mesh, Self::pose(0, 1), material).expect("a valid object");
         let s = S::from_f64;
-        let projection = Projection::perspective(s(FOCUS), WIDTH, HEIGHT);
+        let view = View {
+            // At the origin, zero angles: looks along world −Z with +Y up,
+            // i.e. the workload's eye space, flipped to view axes.
+            camera: Camera::from_angles(Vec3::ZERO, Euler::ZERO),
+            projection: Projection::perspective(s(FOCUS), WIDTH, HEIGHT),
+            width: WIDTH,
+            height: HEIGHT,
+        };
+        // L = (1, 1, 1)/√3 towards the light in eye space, which is world
+        // space for this camera.
+        let light = Light {
+            direction: [1.0, 1.0, 1.0],
+            ambient: 0.2,
+            diffuse: 0.8,
+        };
         // Near 0.5 and far 10 as glFrustum(−0.4, 0.4, −0.3, 0.3, 0.5, 10).
-        let pipeline = Pipeline::new(projection, WIDTH, HEIGHT, s(0.5), s(10.0), s(16.0))
-            .expect("valid pipeline")
-            .with_cull(Cull::Back);
-        // At the origin, zero angles: looks along world −Z with +Y up,
-        // i.e. the workload's eye space, flipped to view axes.
-        let camera = Camera::from_angles(Vec3::ZERO, Euler::ZERO);
-        let ramp = core::array::from_fn(|i| grey565(i as u8));
-        let n = model.positions.len();
+        let renderer =
+            Renderer::from_view(view, s(0.5), s(10.0), &light, grey565(0)).expect("valid pipeline");
         Self {
-            model,
-            shading,
-            pipeline,
-            camera,
-            ramp,
-            flat: vec![Vertex::new(Vec3::ZERO, ()); n],
-            lit: vec![Vertex::new(Vec3::ZERO, Intensity(S::ZERO)); n],
-            flat_proj: vec![MeshVertex::default(); n],
-            lit_proj: vec![MeshVertex::default(); n],
+            renderer,
+            object: [object],
+            scratch: vec![MeshVertex::default(); model.positions.len()],
         }
     }
 
@@ -206,8 +220,9 @@ impl<S: Scalar> Workload<S> {
         )
     }
 
-    /// Renders frame `k` of `n` into `frame`, clearing it first. Returns
-    /// the number of triangles drawn (not culled, not empty).
+    /// Renders frame `k` of `n` into `frame`, clearing it first (colour by
+    /// the draw, depth here). Returns the number of triangles drawn (not
+    /// culled, not empty).
     pub fn render(&mut self, k: u32, n: u32, frame: &mut Frame) -> u32 {
         let (w, h) = (WIDTH, HEIGHT);
         let Ok(mut fb) = Framebuffer::new(&mut frame.color, w, h, w as usize) else {
@@ -216,63 +231,12 @@ impl<S: Scalar> Workload<S> {
         let Ok(mut depth) = DepthBuffer::new(&mut frame.depth, w, h, w as usize, 0) else {
             return 0;
         };
-        fb.clear(grey565(0));
         depth.clear();
-
-        let m = self.camera.object_to_view(&Self::pose(k, n));
-        // L = (1, 1, 1)/√3 towards the light in eye space is (1, −1, −1)/√3
-        // in view space; dot products are the same in object space with
-        // L_obj = Rᵀ·L_view (R is a rotation), so normals stay untouched.
-        let k3 = S::from_f64(1.0 / 3f64.sqrt());
-        let l_view = Vec3::new(k3, -k3, -k3);
-        let l = m.matrix.transpose().mul_vec3(l_view);
-        let (ambient, diffuse) = (S::from_f64(0.2), S::from_f64(0.8));
-        let shade = |n: Vec3<S>| ambient + diffuse * n.dot(l).max_of(S::ZERO);
-
-        let model = &self.model;
-        let pipe = &self.pipeline;
-        let mut drawn = 0;
-        match self.shading {
-            Shading::Flat => {
-                for (v, &p) in self.flat.iter_mut().zip(&model.positions) {
-                    v.pos = m.transform_point3(p);
-                }
-                pipe.project_vertices(&self.flat, &mut self.flat_proj);
-                for (&t, &fnorm) in model.triangles.iter().zip(&model.face_normals) {
-                    let Ok(Some(tri)) = pipe.mesh_triangle(&self.flat, &self.flat_proj, t) else {
-                        continue;
-                    };
-                    let c = intensity_byte(shade(fnorm));
-                    let sh = Flat(grey565(c));
-                    if fill_polygon(&mut fb, &mut depth, &sh, tri.as_slice()) == FillOutcome::Drawn
-                    {
-                        drawn += 1;
-                    }
-                }
-            }
-            Shading::Gouraud => {
-                for ((v, &p), &nv) in self
-                    .lit
-                    .iter_mut()
-                    .zip(&model.positions)
-                    .zip(&model.vertex_normals)
-                {
-                    *v = Vertex::new(m.transform_point3(p), Intensity(shade(nv)));
-                }
-                pipe.project_vertices(&self.lit, &mut self.lit_proj);
-                let sh = Gouraud::new(&self.ramp);
-                for &t in &model.triangles {
-                    let Ok(Some(tri)) = pipe.mesh_triangle(&self.lit, &self.lit_proj, t) else {
-                        continue;
-                    };
-                    if fill_polygon(&mut fb, &mut depth, &sh, tri.as_slice()) == FillOutcome::Drawn
-                    {
-                        drawn += 1;
-                    }
-                }
-            }
+        self.object[0].pose = Self::pose(k, n);
+        match self.renderer.project(&mut self.object, &mut self.scratch) {
+            Ok(f) => f.draw(&mut fb, &mut depth).drawn,
+            Err(_) => 0,
         }
-        drawn
     }
 }
 

@@ -24,10 +24,11 @@ mod frames;
 
 use embedded_graphics::pixelcolor::{IntoStorage, Rgb565, RgbColor};
 use frames::{FRAME_PIXELS, Fnv, HEIGHT, WIDTH};
-use sightline::pipeline::{Intensity, MeshVertex, Vertex};
+use sightline::math::Vec3;
+use sightline::pipeline::MeshVertex;
 use sightline::raster::DepthBuffer;
 use sightline::scalar::{I16F16, Scalar};
-use sightline::scene::{self, Color, builtin};
+use sightline::scene::{self, Color, PreparedObject, Renderer, builtin};
 use sightline::target::Framebuffer;
 
 /// Renders `name` through the shared strip code; returns the hash and all
@@ -36,17 +37,42 @@ fn strips<S: Scalar>(name: &str) -> (u64, Vec<u16>) {
     let mut color = vec![Color::BLACK; frames::BAND_PIXELS];
     let mut depth = vec![0u16; frames::BAND_PIXELS];
     let mut px = Vec::with_capacity(FRAME_PIXELS);
-    let h = frames::render_scene::<S>(name, &mut color, &mut depth, |y, row| {
-        assert_eq!(
-            px.len(),
-            y as usize * WIDTH as usize,
-            "rows arrive in order"
-        );
-        px.extend(row.iter().map(|c| c.into_storage()));
-    })
+    let mut vec3s = vec![Vec3::<S>::ZERO; frames::STORAGE.vec3s];
+    let mut scratch = vec![MeshVertex::default(); frames::STORAGE.vertices];
+    let h = frames::render_scene::<S>(
+        name,
+        &mut vec3s,
+        &mut scratch,
+        &mut color,
+        &mut depth,
+        |y, row| {
+            assert_eq!(
+                px.len(),
+                y as usize * WIDTH as usize,
+                "rows arrive in order"
+            );
+            px.extend(row.iter().map(|c| c.into_storage()));
+        },
+    )
     .expect("built-in scenes render");
     assert_eq!(px.len(), FRAME_PIXELS);
     (h, px)
+}
+
+/// The raster path of `scene` into one whole-frame target.
+fn whole_frame<S: Scalar>(
+    scene: &scene::Scene<'_>,
+    fb: &mut Framebuffer<'_, Color>,
+    z: &mut DepthBuffer<'_>,
+) {
+    let need = scene.storage();
+    let mut vec3s = vec![Vec3::<S>::ZERO; need.vec3s];
+    let mut objects = vec![PreparedObject::EMPTY; need.objects];
+    let objects = scene.prepare(&mut vec3s, &mut objects).unwrap();
+    let renderer = Renderer::<S>::new(scene, WIDTH, HEIGHT).unwrap();
+    let mut scratch = vec![MeshVertex::default(); need.vertices];
+    let frame = renderer.project(objects, &mut scratch).unwrap();
+    frame.draw(fb, z);
 }
 
 #[test]
@@ -68,11 +94,9 @@ fn strips_equal_a_whole_frame() {
                 let mut z = DepthBuffer::new(&mut depth, WIDTH, HEIGHT, w, 0).unwrap();
                 z.clear();
                 if fx {
-                    let view = scene.view::<I16F16>(WIDTH, HEIGHT).unwrap();
-                    scene::render_raster(scene, &view, &mut fb, &mut z).unwrap();
+                    whole_frame::<I16F16>(scene, &mut fb, &mut z);
                 } else {
-                    let view = scene.view::<f32>(WIDTH, HEIGHT).unwrap();
-                    scene::render_raster(scene, &view, &mut fb, &mut z).unwrap();
+                    whole_frame::<f32>(scene, &mut fb, &mut z);
                 }
             }
             let whole: Vec<u16> = color.iter().map(|c| c.into_storage()).collect();
@@ -114,19 +138,14 @@ fn fill_quads_cover_the_counted_pixels() {
 fn workload_frames_cover_the_documented_range() {
     // WORKLOADS.md: the bunny covers 11.0k-18.2k pixels per frame inside
     // x 66..254, y 8..223.
-    const V: usize = frames::BUNNY_VERTS;
-    let wl = frames::Workload::<f32>::new().unwrap();
     let mut color = vec![Color::BLACK; FRAME_PIXELS];
     let mut depth = vec![0u16; FRAME_PIXELS];
-    let mut flat = Box::new([Vertex::new(sightline::math::Vec3::ZERO, ()); V]);
-    let mut lit = Box::new([Vertex::new(sightline::math::Vec3::ZERO, Intensity(0.0f32)); V]);
-    let mut p0 = Box::new([MeshVertex::default(); V]);
-    let mut p1 = Box::new([MeshVertex::default(); V]);
+    let mut scratch = vec![MeshVertex::default(); frames::BUNNY_VERTS];
     for gouraud in [false, true] {
+        let mut storage = vec![Vec3::<f32>::ZERO; frames::WORKLOAD_VEC3S];
+        let mut wl = frames::Workload::<f32>::new(gouraud, &mut storage).unwrap();
         for k in [0, 50, 100, 150] {
-            let drawn = wl.frame(
-                gouraud, k, &mut color, &mut depth, &mut flat, &mut lit, &mut p0, &mut p1,
-            );
+            let drawn = wl.frame(k, &mut color, &mut depth, &mut scratch);
             assert!(drawn > 1000, "frame {k}: {drawn} triangles");
             let bg = frames::grey565(0);
             let mut n = 0;

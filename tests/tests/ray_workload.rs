@@ -27,7 +27,7 @@ fn three_searches_identical_and_coverage_matches_raster() {
     assert_eq!(diff(&bounds, &brute), 0, "bounds vs brute force");
 
     // Raster W1 frame 0.
-    let mut raster = Workload::<f32>::new(model.clone(), Shading::Flat);
+    let mut raster = Workload::<f32>::new(&model, Shading::Flat);
     let mut frame = Frame::default();
     raster.render(0, 1, &mut frame);
     let bg = grey565(0);

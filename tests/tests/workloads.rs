@@ -16,7 +16,8 @@ fn bunny_obj_has_the_documented_size() {
 /// Average coverage over all N = 200 frames and the union bounding box.
 fn coverage_stats(shading: Shading) -> (f64, u32, u32, (u16, u16, u16, u16)) {
     let n = 200;
-    let mut w = Workload::<f32>::new(Model::bunny(), shading);
+    let model = Model::bunny();
+    let mut w = Workload::<f32>::new(&model, shading);
     let mut frame = Frame::default();
     let (mut sum, mut lo, mut hi) = (0u64, u32::MAX, 0u32);
     let mut bb = (u16::MAX, u16::MAX, 0, 0);
@@ -52,8 +53,9 @@ fn w1_and_w2_cover_the_documented_pixels() {
 #[test]
 fn fixed_point_pipeline_renders_nearly_the_same_bunny() {
     let n = 20;
-    let mut a = Workload::<f32>::new(Model::bunny(), Shading::Flat);
-    let mut b = Workload::<I16F16>::new(Model::bunny(), Shading::Flat);
+    let (ma, mb) = (Model::bunny(), Model::bunny());
+    let mut a = Workload::<f32>::new(&ma, Shading::Flat);
+    let mut b = Workload::<I16F16>::new(&mb, Shading::Flat);
     let (mut fa, mut fb) = (Frame::default(), Frame::default());
     for k in 0..n {
         a.render(k, n, &mut fa);

@@ -37,7 +37,8 @@ pub struct MeshVertex<const K: usize> {
 /// finite, or its projection failed): triangles using it always take the
 /// clipping path, which reports the error as
 /// [`Pipeline::project_polygon`] does.
-const UNUSABLE: u8 = 0x80;
+pub const OUTCODE_UNUSABLE: u8 = 0x80;
+const UNUSABLE: u8 = OUTCODE_UNUSABLE;
 
 impl<const K: usize> Default for MeshVertex<K> {
     fn default() -> Self {
@@ -148,7 +149,8 @@ impl<S: Scalar> Pipeline<S> {
     /// Whether face culling keeps a projected polygon (the rule of
     /// [`Self::project_polygon`]).
     #[inline]
-    pub(super) fn keep<const K: usize>(&self, screen: &[ScreenVertex<K>]) -> bool {
+    #[must_use]
+    pub fn keep<const K: usize>(&self, screen: &[ScreenVertex<K>]) -> bool {
         if self.cull == Cull::None {
             return true;
         }

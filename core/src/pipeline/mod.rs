@@ -35,7 +35,7 @@ pub mod vertex;
 pub use clip::{
     ClipError, ClippedPolygon, Frustum, MAX_CLIPPED_VERTICES, MAX_INPUT_VERTICES, MAX_PLANES, Plane,
 };
-pub use mesh::{MeshTriangle, MeshVertex};
+pub use mesh::{MeshTriangle, MeshVertex, OUTCODE_UNUSABLE};
 pub use vertex::{
     Attributes, Intensity, IntensityUv, Uv, UvPerspective, Varyings, Vertex, VertexXyz, VertexXyzI,
     VertexXyzIUv, VertexXyzUv, VertexXyzUvP,

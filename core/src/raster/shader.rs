@@ -139,8 +139,27 @@ pub trait Shade: Copy {
     }
 }
 
-fn scale_channel(c: u8, i: u8) -> u8 {
-    ((c as u16 * i as u16) / 255) as u8
+/// `⌊c·i/255⌋` without a division (ARMv6-M has none): for
+/// `x = c·i ≤ 255² = 65025`, `⌊x/255⌋ = (x + 1 + ⌊x/256⌋) >> 8`, checked for
+/// every `(c, i)` by the test `scale_channel_is_exact`.
+#[inline]
+pub(crate) fn scale_channel(c: u8, i: u8) -> u8 {
+    let x = c as u32 * i as u32;
+    ((x + 1 + (x >> 8)) >> 8) as u8
+}
+
+#[cfg(test)]
+#[test]
+fn scale_channel_is_exact() {
+    for c in 0..=255u8 {
+        for i in 0..=255u8 {
+            assert_eq!(
+                scale_channel(c, i) as u32,
+                c as u32 * i as u32 / 255,
+                "{c}·{i}/255"
+            );
+        }
+    }
 }
 
 impl Shade for Rgb565 {

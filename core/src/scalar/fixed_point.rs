@@ -143,7 +143,7 @@ impl<Frac: LeEqU32> Fx<Frac> {
     #[inline]
     fn mul_wide(a: i32, b: i32) -> i64 {
         let f = Self::FRAC;
-        ((a as i64) * (b as i64) + (1i64 << (f - 1))) >> f
+        (widening_mul(a, b) + (1i64 << (f - 1))) >> f
     }
     /// Rounded quotient of the raw bits, before the range check; `b != 0`.
     #[inline]
@@ -168,6 +168,44 @@ impl<Frac: LeEqU32> Fx<Frac> {
             Self::sat((v + (1i64 << (29 - f))) >> (30 - f))
         }
     }
+}
+
+/// The exact product `a·b` as `i64`.
+///
+/// ARMv6-M (Cortex-M0/M0+, RP2040) has no 32×32→64 multiply, and LLVM
+/// lowers `a as i64 * b as i64` there to a call of `__aeabi_lmul`, a full
+/// 64×64 multiply: that call was 21 % of a W1 frame. There (recognised as
+/// 32-bit ARM without atomic compare-and-swap, which ARMv6-M lacks) the
+/// product is assembled from four 16×16 multiplies instead; elsewhere the
+/// hardware's widening multiply is used. Both give the same bits (the
+/// test `split_widening_mul_is_exact`).
+#[inline(always)]
+pub(crate) fn widening_mul(a: i32, b: i32) -> i64 {
+    #[cfg(all(target_arch = "arm", not(target_has_atomic = "ptr")))]
+    {
+        split_widening_mul(a, b)
+    }
+    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
+    {
+        a as i64 * b as i64
+    }
+}
+
+/// `a·b` from 16-bit halves: with `a = aₕ·2¹⁶ + aₗ` (`aₗ` unsigned, `aₕ`
+/// signed), `a·b = aₕbₕ·2³² + (aₕbₗ + aₗbₕ)·2¹⁶ + aₗbₗ`. Each cross product
+/// lies in (−2³¹, 2³¹) (|aₕ| ≤ 2¹⁵, bₗ < 2¹⁶), `aₗbₗ < 2³²` is unsigned and
+/// `|aₕbₕ| ≤ 2³⁰`, so every partial product is a 32-bit multiply.
+#[inline(always)]
+#[cfg_attr(
+    not(all(target_arch = "arm", not(target_has_atomic = "ptr"))),
+    allow(dead_code)
+)]
+pub(crate) fn split_widening_mul(a: i32, b: i32) -> i64 {
+    let (al, ah) = ((a & 0xffff) as u32, a >> 16);
+    let (bl, bh) = ((b & 0xffff) as u32, b >> 16);
+    let low = (al * bl) as i64;
+    let mid = (ah * bl as i32) as i64 + (al as i32 * bh) as i64;
+    (((ah * bh) as i64) << 32) + (mid << 16) + low
 }
 
 impl<Frac: LeEqU32 + 'static> fmt::Debug for Fx<Frac> {
@@ -451,7 +489,7 @@ impl<Frac: LeEqU32 + 'static> Scalar for Fx<Frac> {
     fn sub_mul_flag(self, a: Self, b: Self, overflow: &mut bool) -> Self {
         let f = Self::FRAC;
         // |self·2ᶠ| ≤ 2⁶¹ and |a·b| ≤ 2⁶², so the i64 never overflows.
-        let exact = ((self.bits as i64) << f) - (a.bits as i64) * (b.bits as i64);
+        let exact = ((self.bits as i64) << f) - widening_mul(a.bits, b.bits);
         let v = (exact + (1i64 << (f - 1))) >> f;
         match Self::fits(v) {
             Some(r) => r,

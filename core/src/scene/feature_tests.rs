@@ -16,14 +16,31 @@ use std::vec;
 
 const SENTINEL: Color = Color::new(1, 2, 3);
 
+/// Prepares `scene` in `S` (storage from `Vec`s), projects one frame at
+/// `w`×`h` and hands it to `draw`: what a host caller writes.
+pub(super) fn with_frame<S: Scalar, R>(
+    scene: &Scene<'_>,
+    w: u16,
+    h: u16,
+    draw: impl FnOnce(&Frame<'_, '_, S>) -> R,
+) -> Result<R, SceneError> {
+    let need = scene.storage();
+    let mut vec3s = vec![Vec3::<S>::ZERO; need.vec3s];
+    let mut objects = vec![PreparedObject::EMPTY; need.objects];
+    let objects = scene.prepare(&mut vec3s, &mut objects)?;
+    let renderer = Renderer::<S>::new(scene, w, h)?;
+    let mut scratch = vec![crate::pipeline::MeshVertex::default(); need.vertices];
+    let frame = renderer.project(objects, &mut scratch)?;
+    Ok(draw(&frame))
+}
+
 /// Renders `scene` at 64×48 without a depth buffer; returns the result
 /// and the pixels.
 fn render(scene: &Scene<'_>) -> (Result<RasterStats, SceneError>, std::vec::Vec<Color>) {
     let (w, h) = (64u16, 48u16);
     let mut px = vec![SENTINEL; w as usize * h as usize];
     let mut fb = Framebuffer::new(&mut px, w, h, w as usize).unwrap();
-    let view = scene.view::<I16F16>(w, h).unwrap();
-    let r = render_raster(scene, &view, &mut fb, &mut NoDepth);
+    let r = with_frame::<I16F16, _>(scene, w, h, |f| f.draw(&mut fb, &mut NoDepth));
     (r, px)
 }
 
@@ -102,4 +119,136 @@ fn the_far_plane_clips_only_with_clip_far() {
         assert_eq!(r, Ok(FillOutcome::Drawn));
         assert!(drawn > 100, "{drawn}");
     }
+}
+
+#[test]
+fn builtin_closed_flags_match_the_edges() {
+    // `closed` is data: check it against the definition (every directed
+    // edge once, and its reverse too).
+    use std::collections::HashSet;
+    for mesh in [
+        &super::builtin::CUBE_MESH,
+        &super::builtin::FLOOR_MESH,
+        &super::builtin::BUNNY_MESH,
+    ] {
+        let mut edges = HashSet::new();
+        let mut unique = true;
+        for t in mesh.triangles {
+            for i in 0..3 {
+                unique &= edges.insert((t[i], t[(i + 1) % 3]));
+            }
+        }
+        let closed = unique && edges.iter().all(|&(a, b)| edges.contains(&(b, a)));
+        assert_eq!(mesh.closed, closed, "{} triangles", mesh.triangles.len());
+    }
+}
+
+#[test]
+fn too_small_storage_and_scratch_are_errors_before_drawing() {
+    let need = CUBE.storage();
+    let mut vec3s = vec![Vec3::<I16F16>::ZERO; need.vec3s - 1];
+    let mut objects = vec![PreparedObject::EMPTY; need.objects];
+    assert_eq!(
+        CUBE.prepare(&mut vec3s, &mut objects).err(),
+        Some(SceneError::Storage)
+    );
+    // (A failed `prepare` keeps its storage borrowed: fresh storage.)
+    let mut vec3s = vec![Vec3::<I16F16>::ZERO; need.vec3s];
+    let mut objects = vec![PreparedObject::EMPTY; need.objects];
+    let objects = CUBE.prepare(&mut vec3s, &mut objects).unwrap();
+    let renderer = Renderer::<I16F16>::new(&CUBE, 16, 16).unwrap();
+    let mut scratch = vec![crate::pipeline::MeshVertex::default(); need.vertices - 1];
+    assert_eq!(
+        renderer.project(objects, &mut scratch).err(),
+        Some(SceneError::ScratchTooSmall {
+            needed: need.vertices,
+            given: need.vertices - 1
+        })
+    );
+}
+
+#[test]
+fn non_finite_scene_numbers_are_refused_by_name() {
+    let light = Light {
+        ambient: f32::NAN,
+        ..CUBE.light
+    };
+    let far = Scene {
+        far: f32::INFINITY,
+        ..CUBE
+    };
+    let lit = Scene { light, ..CUBE };
+    let eye = Scene {
+        camera: CameraSpec::LookAt {
+            eye: [f32::NAN, 0.0, 0.0],
+            target: [0.0; 3],
+            up: [0.0, 1.0, 0.0],
+        },
+        ..CUBE
+    };
+    for (scene, what) in [(&far, "far"), (&lit, "light"), (&eye, "camera")] {
+        assert_eq!(
+            Renderer::<f32>::new(scene, 16, 16).err(),
+            Some(SceneError::NonFinite { what })
+        );
+    }
+    let mut r = Renderer::<f32>::new(&CUBE, 16, 16).unwrap();
+    assert_eq!(
+        r.set_light(&light),
+        Err(SceneError::NonFinite { what: "light" })
+    );
+}
+
+#[test]
+fn closed_meshes_cull_back_faces_without_a_depth_buffer() {
+    // The cube drawn without depth: with culling only its front faces
+    // reach the image, so it equals the depth-tested image; drawn with
+    // `Cull::None` the back faces paint over some front pixels.
+    let (w, h) = (48u16, 36u16);
+    let draw = |cull: Option<crate::pipeline::Cull>, with_depth: bool| {
+        let need = CUBE.storage();
+        let mut vec3s = vec![Vec3::<f32>::ZERO; need.vec3s];
+        let mut objects = vec![PreparedObject::EMPTY; need.objects];
+        let objects = CUBE.prepare(&mut vec3s, &mut objects).unwrap();
+        if let Some(c) = cull {
+            for o in objects.iter_mut() {
+                o.cull = c;
+            }
+        }
+        let renderer = Renderer::<f32>::new(&CUBE, w, h).unwrap();
+        let mut scratch = vec![crate::pipeline::MeshVertex::default(); need.vertices];
+        let frame = renderer.project(objects, &mut scratch).unwrap();
+        let mut px = vec![SENTINEL; w as usize * h as usize];
+        let mut fb = Framebuffer::new(&mut px, w, h, w as usize).unwrap();
+        let stats = if with_depth {
+            #[cfg(feature = "depth")]
+            {
+                let mut keys = vec![u16::MAX; px_len(w, h)];
+                let mut z =
+                    crate::raster::DepthBuffer::new(&mut keys, w, h, w as usize, 0).unwrap();
+                frame.draw(&mut fb, &mut z)
+            }
+            #[cfg(not(feature = "depth"))]
+            frame.draw(&mut fb, &mut NoDepth)
+        } else {
+            frame.draw(&mut fb, &mut NoDepth)
+        };
+        (px, stats)
+    };
+    let (culled, stats) = draw(None, false);
+    assert!(stats.culled >= 5, "{stats:?}");
+    let (all, _) = draw(Some(crate::pipeline::Cull::None), false);
+    assert_ne!(
+        culled, all,
+        "back faces drawn over front faces without culling"
+    );
+    if cfg!(feature = "depth") {
+        let (depth_tested, _) = draw(None, true);
+        assert_eq!(culled, depth_tested);
+    }
+}
+
+#[cfg(feature = "depth")]
+fn px_len(w: u16, h: u16) -> usize {
+    w as usize * h as usize
 }

@@ -1,21 +1,34 @@
 //! One borrowed, allocation-free scene description that both viewing
-//! paths render: the raster path ([`render_raster`], world→screen through
-//! the [`pipeline`](crate::pipeline)) and the ray path ([`RayScene`],
-//! screen→world per pixel or per row).
+//! paths render: the raster path (world→screen through the
+//! [`pipeline`](crate::pipeline)) over its prepared form, and the ray path
+//! ([`RayScene`], screen→world per pixel or per row).
 //!
 //! | file | what it holds |
 //! |---|---|
 //! | `mod.rs` | the description: [`MeshData`], [`Material`], [`SceneObject`], [`SceneSphere`], [`Light`], [`CameraSpec`], [`ProjectionSpec`], [`Scene`]; [`SceneError`] |
+//! | `prepared.rs` | the prepared form, made once: [`PreparedMesh`] (positions and normals in the render scalar), [`PreparedObject`], [`Scene::prepare`] into caller storage |
+//! | `render.rs` | the raster path per frame: [`Renderer::project`] (each vertex once) and [`Frame::draw`] (per band) |
 //! | `shade.rs` | the one material model both paths use |
-//! | `raster.rs` | [`render_raster`] |
 //! | `ray.rs` | [`RayScene`]: per-pixel and per-row ray casting |
 //! | `builtin/` | demo scenes as `const` data, shared by firmware and the host simulator |
+//!
+//! # Prepare once, draw per frame
+//!
+//! ```text
+//! Scene (f32, quantised meshes) ──Scene::prepare──► [PreparedObject<S>]   once, into caller storage
+//! Scene ──Renderer::new──► Renderer<S> (camera, projection, clip volume, light)
+//! per frame: set poses ──Renderer::project──► Frame (every vertex once, into caller scratch)
+//! per band:  Frame::draw(target, depth)   (cull, light, set up, scan-convert)
+//! ```
+//!
+//! The [`Renderer`] docs show a whole first render.
 //!
 //! # Data forms
 //!
 //! Scene-level numbers (camera, poses, light, spheres) are `f32` so that
 //! scenes can be `const`; they are converted to the rendering scalar `S`
-//! once per frame. Mesh positions are quantised `i16` with one `f32`
+//! once, by [`Scene::prepare`] and [`Renderer::new`] (a general camera is
+//! solved in `f32` for a fixed-point `S`, then rounded). Mesh positions are quantised `i16` with one `f32`
 //! scale per mesh (world units per step), normals are `i16` in units of
 //! 1/32767, texture coordinates are `i16` texels: small in flash and exact
 //! in I16F16.
@@ -31,7 +44,8 @@
 //!   the same quantised vertices with the same code on both paths, so both
 //!   paths give bit-identical colours for a triangle.
 //! - [`Material::Gouraud`]: `I` is evaluated at the vertices (vertex
-//!   normals, or the face normal when the mesh has none) and interpolated
+//!   normals; for a mesh without them the raster path prepares
+//!   area-weighted ones, the ray path uses the face normal) and interpolated
 //!   linearly in screen space. The ray path finds the triangle by casting,
 //!   then evaluates the raster path's 16.16 intensity plane over the
 //!   triangle's projected 28.4 vertices at the pixel centre (falling back
@@ -46,16 +60,18 @@
 //! Both paths sample at pixel centres (i + ½, j + ½) and use the nearest
 //! surface, so their images can be compared pixel by pixel.
 
-mod raster;
+mod prepared;
 #[cfg(feature = "raycast")]
 mod ray;
+mod render;
 mod shade;
 
 pub mod builtin;
 
-pub use raster::{RasterStats, render_raster};
+pub use prepared::{MeshError, Normals, PreparedMesh, PreparedObject, Storage, storage_len};
 #[cfg(feature = "raycast")]
 pub use ray::RayScene;
+pub use render::{Frame, RasterStats, Renderer};
 
 /// How many objects, and how many spheres, the ray path holds (its
 /// per-object state lives in fixed-capacity vectors: no allocation).
@@ -75,12 +91,19 @@ use embedded_graphics::pixelcolor::Rgb565;
 /// The colour type of scenes and of their images.
 pub type Color = Rgb565;
 
-/// An indexed triangle mesh over borrowed slices.
+/// An indexed triangle mesh over borrowed slices, quantised: the
+/// description a file or `const` data gives. [`MeshData::prepare`] turns it
+/// into the render scalar.
 ///
 /// Triangles are counter-clockwise seen from outside (the OBJ
-/// convention); both paths draw both sides.
+/// convention). A mesh marked [`closed`](Self::closed) has its back faces
+/// culled; an open one is drawn from both sides.
 #[derive(Clone, Copy, Debug)]
 pub struct MeshData<'a> {
+    /// Whether every edge is shared by exactly two triangles with opposite
+    /// winding (a closed, consistently oriented surface, whose back faces
+    /// can never be seen from outside).
+    pub closed: bool,
     /// Quantised object-space positions: position `k` is
     /// `positions[k] · scale`.
     pub positions: &'a [[i16; 3]],
@@ -305,7 +328,37 @@ pub struct Scene<'a> {
 
 /// Why a scene cannot be rendered.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum SceneError {
+    /// A number of the scene is NaN or ±∞: `what` names it (`camera`,
+    /// `projection`, `light`, `near`, `far`).
+    NonFinite {
+        /// Which part of the scene.
+        what: &'static str,
+    },
+    /// A mesh could not be prepared.
+    Mesh {
+        /// Object index in the scene.
+        object: usize,
+        /// Why.
+        error: MeshError,
+    },
+    /// A flat material without face normals, or a Gouraud one without
+    /// vertex normals, in a [`PreparedMesh`].
+    MissingNormals {
+        /// Object index in the scene.
+        object: usize,
+    },
+    /// The storage given to [`Scene::prepare`] is shorter than
+    /// [`Scene::storage`] says.
+    Storage,
+    /// The frame scratch given to [`Renderer::project`] is too short.
+    ScratchTooSmall {
+        /// Vertices needed (all objects together).
+        needed: usize,
+        /// Vertices given.
+        given: usize,
+    },
     /// The camera could not be built.
     Camera(CameraError),
     /// The field of view is not in (0, π), or the image size is zero.
@@ -365,6 +418,17 @@ pub enum SceneError {
 impl fmt::Display for SceneError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
+            Self::NonFinite { what } => write!(f, "{what}: a value is NaN or infinite"),
+            Self::Mesh { object, error } => write!(f, "object {object}: {error}"),
+            Self::MissingNormals { object } => write!(
+                f,
+                "object {object}: the material needs normals the prepared mesh lacks"
+            ),
+            Self::Storage => f.write_str("storage is shorter than Scene::storage says"),
+            Self::ScratchTooSmall { needed, given } => write!(
+                f,
+                "frame scratch holds {given} vertices, the objects have {needed}"
+            ),
             Self::Camera(e) => write!(f, "camera: {e}"),
             Self::BadProjection => {
                 f.write_str("projection: need 0 < fov_x < pi (or width > 0) and a non-empty image")
@@ -397,13 +461,43 @@ impl fmt::Display for SceneError {
             Self::TooManyObjects => {
                 write!(f, "more than {MAX_RAY_OBJECTS} objects for the ray path")
             }
-            Self::BadPose { object } => write!(f, "object {object}: pose is not invertible"),
+            Self::BadPose { object } => {
+                write!(
+                    f,
+                    "object {object}: pose is NaN, infinite or not invertible"
+                )
+            }
             Self::BadSphere { sphere } => write!(f, "sphere {sphere}: bad centre or radius"),
         }
     }
 }
 
 impl core::error::Error for SceneError {}
+
+impl SceneError {
+    /// The same error with its object index set to `object` (for errors
+    /// that name an object).
+    #[must_use]
+    pub fn at_object(self, object: usize) -> Self {
+        match self {
+            Self::Mesh { error, .. } => Self::Mesh { object, error },
+            Self::MissingNormals { .. } => Self::MissingNormals { object },
+            Self::MissingUv { .. } => Self::MissingUv { object },
+            Self::BadPose { .. } => Self::BadPose { object },
+            Self::AttributeCount { .. } => Self::AttributeCount { object },
+            Self::IndexOutOfRange { triangle, .. } => Self::IndexOutOfRange { object, triangle },
+            e => e,
+        }
+    }
+}
+
+fn finite3(v: &[f32; 3]) -> bool {
+    v.iter().all(|c| c.is_finite())
+}
+
+fn light_is_finite(l: &Light) -> bool {
+    finite3(&l.direction) && l.ambient.is_finite() && l.diffuse.is_finite()
+}
 
 /// `[f32; 3]` → `Vec3<S>`.
 #[must_use]
@@ -445,6 +539,12 @@ impl CameraSpec {
                 down,
                 forward,
             } => Camera::from_orthonormal(vec3(position), vec3(right), vec3(down), vec3(forward)),
+            // Solved in f32 for fixed point and rounded: a camera solved in
+            // I16F16 is ~370x less accurate (docs/report/accuracy.md).
+            Self::Vectors { position, u, v, w } if !S::IS_FLOAT => {
+                Camera::<f32>::from_vectors(vec3(position), vec3(u), vec3(v), vec3(w))
+                    .map(|(c, _)| c.cast())
+            }
             Self::Vectors { position, u, v, w } => {
                 Camera::from_vectors(vec3(position), vec3(u), vec3(v), vec3(w)).map(|(c, _)| c)
             }
@@ -481,6 +581,44 @@ impl Scene<'_> {
             width,
             height,
         })
+    }
+
+    /// Checks that every number of the camera, projection, light and depth
+    /// range is finite.
+    ///
+    /// # Errors
+    /// [`SceneError::NonFinite`] naming the part.
+    pub fn validate_view(&self) -> Result<(), SceneError> {
+        let camera_ok = match &self.camera {
+            CameraSpec::Angles { position, angles } => finite3(position) && finite3(angles),
+            CameraSpec::Orthonormal {
+                position,
+                right,
+                down,
+                forward,
+            } => finite3(position) && finite3(right) && finite3(down) && finite3(forward),
+            CameraSpec::Vectors { position, u, v, w } => {
+                finite3(position) && finite3(u) && finite3(v) && finite3(w)
+            }
+            CameraSpec::LookAt { eye, target, up } => {
+                finite3(eye) && finite3(target) && finite3(up)
+            }
+        };
+        let projection_ok = match self.projection {
+            ProjectionSpec::Perspective { fov_x } => fov_x.is_finite(),
+            ProjectionSpec::Parallel { width } => width.is_finite(),
+        };
+        let checks = [
+            (camera_ok, "camera"),
+            (projection_ok, "projection"),
+            (light_is_finite(&self.light), "light"),
+            (self.near.is_finite(), "near"),
+            (self.far.is_finite(), "far"),
+        ];
+        match checks.iter().find(|(ok, _)| !ok) {
+            Some(&(_, what)) => Err(SceneError::NonFinite { what }),
+            None => Ok(()),
+        }
     }
 
     /// Checks every mesh and material: indices in range, one normal and uv

@@ -62,6 +62,16 @@ impl<S: Scalar> Lighting<S> {
         }
     }
 
+    /// The same light seen from an object turned by the rotation `rot`
+    /// (object→world): `n_world·L = (rot·n)·L = n·(rotᵀ·L)`, so object-space
+    /// normals can be lit as they are.
+    pub(crate) fn in_object(&self, rot: &Mat3<S>) -> Self {
+        Self {
+            dir: rot.transpose().mul_vec3(self.dir),
+            ..*self
+        }
+    }
+
     /// `ambient + diffuse·max(0, n·L)` for a world-space unit normal.
     pub(crate) fn intensity(&self, n: Vec3<S>) -> S {
         self.ambient + self.diffuse * n.dot(self.dir).max_of(S::ZERO)

@@ -11,8 +11,9 @@ fn raster_image<S: Scalar>(scene: &Scene<'_>, w: u16, h: u16) -> std::vec::Vec<C
     let mut keys = vec![u16::MAX; px.len()];
     let mut fb = Framebuffer::new(&mut px, w, h, w as usize).unwrap();
     let mut depth = DepthBuffer::new(&mut keys, w, h, w as usize, 0).unwrap();
-    let view = scene.view::<S>(w, h).unwrap();
-    let stats = render_raster(scene, &view, &mut fb, &mut depth).unwrap();
+    let stats =
+        super::feature_tests::with_frame::<S, _>(scene, w, h, |f| f.draw(&mut fb, &mut depth))
+            .unwrap();
     assert_eq!(stats.errors, 0);
     px
 }
@@ -179,26 +180,29 @@ fn strip_rendering_with_bands_equals_the_whole_frame() {
     let (w, h, rows) = (48u16, 36u16, 8u16);
     for scene in [&builtin::BUNNY, &builtin::CORRIDOR] {
         let whole = raster_image::<f32>(scene, w, h);
-        let view = scene.view::<f32>(w, h).unwrap();
         let mut strip = vec![Color::new(0, 0, 0); w as usize * rows as usize];
         let mut keys = vec![u16::MAX; strip.len()];
-        let mut y0 = 0;
-        while y0 < h as i32 {
-            keys.fill(u16::MAX);
-            let mut band = Band::new(&mut strip, w, rows, w as usize, y0).unwrap();
-            let mut depth = DepthBuffer::new(&mut keys, w, rows, w as usize, y0).unwrap();
-            render_raster(scene, &view, &mut band, &mut depth).unwrap();
-            for y in y0..(y0 + rows as i32).min(h as i32) {
-                for x in 0..w as i32 {
-                    assert_eq!(
-                        band.pixel(x, y),
-                        Some(whole[y as usize * w as usize + x as usize]),
-                        "{} ({x}, {y})",
-                        scene.name
-                    );
+        // One projected frame, drawn band by band.
+        super::feature_tests::with_frame::<f32, _>(scene, w, h, |frame| {
+            let mut y0 = 0;
+            while y0 < h as i32 {
+                keys.fill(u16::MAX);
+                let mut band = Band::new(&mut strip, w, rows, w as usize, y0).unwrap();
+                let mut depth = DepthBuffer::new(&mut keys, w, rows, w as usize, y0).unwrap();
+                frame.draw(&mut band, &mut depth);
+                for y in y0..(y0 + rows as i32).min(h as i32) {
+                    for x in 0..w as i32 {
+                        assert_eq!(
+                            band.pixel(x, y),
+                            Some(whole[y as usize * w as usize + x as usize]),
+                            "{} ({x}, {y})",
+                            scene.name
+                        );
+                    }
                 }
+                y0 += rows as i32;
             }
-            y0 += rows as i32;
-        }
+        })
+        .unwrap();
     }
 }

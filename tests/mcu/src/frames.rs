@@ -21,17 +21,18 @@ use embedded_graphics::pixelcolor::{IntoStorage, Rgb565, RgbColor};
 use sightline::camera::{Camera, Projection};
 use sightline::math::Vec3;
 use sightline::pipeline::{
-    Cull, Intensity, MeshVertex, Pipeline, ScreenPolygon, Uv, UvPerspective, Varyings, Vertex,
+    Intensity, MeshVertex, Pipeline, ScreenPolygon, Uv, UvPerspective, Varyings, Vertex,
 };
 use sightline::raster::{
     AffineTexture, DepthBuffer, Flat, Gouraud, NoDepth, PerspectiveTexture, RepeatPow2,
     ScreenVertex, Shade, Texture, fill_polygon,
 };
 use sightline::scalar::{I16F16, Scalar};
-use sightline::scene::builtin::{
-    self, BUNNY_NORMALS, BUNNY_POSITIONS, BUNNY_SCALE, BUNNY_TRIANGLES,
+use sightline::scene::builtin::{self, BUNNY_NORMALS, BUNNY_POSITIONS, BUNNY_TRIANGLES};
+use sightline::scene::{
+    Color, Light, Material, PreparedMesh, PreparedObject, RayScene, Renderer, Scene, SceneError,
+    Storage, View,
 };
-use sightline::scene::{self, Color, RayScene, Scene, SceneError};
 use sightline::target::{Band, Framebuffer};
 use sightline::transform::{Euler, Pose};
 
@@ -77,27 +78,61 @@ impl Default for Fnv {
     }
 }
 
-/// Renders built-in scene `name` in scalar `S` at [`WIDTH`]×[`HEIGHT`],
-/// band by band in `color` and `depth` (each at least [`BAND_PIXELS`]
-/// long), calling `row(y, pixels)` for every finished row top to bottom.
-/// Returns FNV-1a over all pixels in row order.
+/// The largest [`Scene::storage`] of the scenes in [`SCENES`], field by
+/// field: what [`render_scene`] needs for any of them.
+pub const STORAGE: Storage = {
+    let mut s = Storage {
+        vec3s: 0,
+        objects: 0,
+        vertices: 0,
+    };
+    let mut i = 0;
+    while i < builtin::ALL.len() {
+        let n = builtin::ALL[i].storage();
+        if n.vec3s > s.vec3s {
+            s.vec3s = n.vec3s;
+        }
+        if n.objects > s.objects {
+            s.objects = n.objects;
+        }
+        if n.vertices > s.vertices {
+            s.vertices = n.vertices;
+        }
+        i += 1;
+    }
+    s
+};
+
+/// Renders built-in scene `name` in scalar `S` at [`WIDTH`]×[`HEIGHT`]:
+/// prepared once into `vec3s` (at least [`STORAGE`]`.vec3s`), projected
+/// once into `scratch` (at least [`STORAGE`]`.vertices`), then drawn band
+/// by band in `color` and `depth` (each at least [`BAND_PIXELS`] long),
+/// calling `row(y, pixels)` for every finished row top to bottom. Returns
+/// FNV-1a over all pixels in row order. `spheres` is drawn by the ray path
+/// (spheres are ray-only).
 ///
 /// # Errors
 /// An unknown name gives [`SceneError::BadProjection`]; otherwise the
 /// scene's own error (the built-in scenes have none).
 pub fn render_scene<S: Scalar>(
     name: &str,
+    vec3s: &mut [Vec3<S>],
+    scratch: &mut [MeshVertex<1>],
     color: &mut [Color],
     depth: &mut [u16],
     mut row: impl FnMut(u16, &[Color]),
 ) -> Result<u64, SceneError> {
     let scene: &Scene<'_> = builtin::by_name(name).ok_or(SceneError::BadProjection)?;
-    let view = scene.view::<S>(WIDTH, HEIGHT)?;
     let ray = if name == "spheres" {
+        let view = scene.view::<S>(WIDTH, HEIGHT)?;
         Some(RayScene::new(scene, &view)?)
     } else {
         None
     };
+    let mut objects = [PreparedObject::EMPTY; STORAGE.objects];
+    let objects = scene.prepare(vec3s, &mut objects)?;
+    let renderer = Renderer::<S>::new(scene, WIDTH, HEIGHT)?;
+    let frame = renderer.project(objects, scratch)?;
     let (color, depth) = (&mut color[..BAND_PIXELS], &mut depth[..BAND_PIXELS]);
     let mut h = Fnv::new();
     let w = WIDTH as usize;
@@ -112,7 +147,7 @@ pub fn render_scene<S: Scalar>(
                 let mut z =
                     DepthBuffer::new(&mut depth[..n], WIDTH, rows, w, y0 as i32).map_err(bad)?;
                 z.clear();
-                scene::render_raster(scene, &view, &mut band, &mut z)?;
+                frame.draw(&mut band, &mut z);
             }
         }
         for r in 0..rows as usize {
@@ -309,20 +344,22 @@ pub const WORKLOAD_TURN: u32 = 200;
 /// frames per turn).
 pub const WORKLOAD_STEP: u32 = 10;
 
+/// `Vec3` storage [`Workload::new`] needs: positions and normals.
+pub const WORKLOAD_VEC3S: usize = BUNNY_VERTS + BUNNY_TRIANGLES.len();
+
 /// W1/W2 on the built-in quantised bunny (`scene::builtin::BUNNY_*`, the
 /// same 1839 vertices and 3674 triangles as `data/bunny.obj`, stored as
-/// i16 with 1/2048 unit steps, and its stored unit vertex normals): the
-/// mesh is centred on its bounding box and scaled so its largest axis
-/// spans [−1, 1], as WORKLOADS.md defines; face normals come from the
-/// quantised positions. Camera, pose, culling, light, clears and the
-/// grey output are WORKLOADS.md's.
+/// i16 with 1/2048 unit steps, and its stored unit vertex normals), drawn
+/// through the public prepared-scene API ([`Renderer`], [`PreparedObject`])
+/// as every other caller draws: the mesh is centred on its bounding box
+/// and scaled so its largest axis spans [−1, 1], as WORKLOADS.md defines;
+/// face normals come from the quantised positions. Camera, pose, culling
+/// (the bunny is closed), light and clears are WORKLOADS.md's; the grey is
+/// the material model's white scaled by `⌊255·I⌋/255`.
 #[derive(Debug)]
-pub struct Workload<S> {
-    positions: [Vec3<S>; BUNNY_VERTS],
-    normals: [Vec3<S>; BUNNY_VERTS],
-    pipeline: Pipeline<S>,
-    camera: Camera<S>,
-    ramp: [Color; 256],
+pub struct Workload<'a, S> {
+    renderer: Renderer<S>,
+    object: [PreparedObject<'a, S>; 1],
 }
 
 /// The workload's grey: `v = floor(255·I)`, RGB565 `(v>>3, v>>2, v>>3)`.
@@ -330,9 +367,10 @@ pub fn grey565(v: u8) -> Color {
     Rgb565::new(v >> 3, v >> 2, v >> 3)
 }
 
-impl<S: Scalar> Workload<S> {
-    /// Sets up W1/W2 (`None` only if the pipeline cannot be built).
-    pub fn new() -> Option<Self> {
+impl<'a, S: Scalar> Workload<'a, S> {
+    /// Prepares W1 (`gouraud == false`) or W2 into `storage` (at least
+    /// [`WORKLOAD_VEC3S`] long); `None` if the pipeline cannot be built.
+    pub fn new(gouraud: bool, storage: &'a mut [Vec3<S>]) -> Option<Self> {
         let mut lo = [i16::MAX; 3];
         let mut hi = [i16::MIN; 3];
         for p in &BUNNY_POSITIONS {
@@ -346,58 +384,70 @@ impl<S: Scalar> Workload<S> {
         let half = (0..3)
             .map(|a| (hi[a] as f32 - lo[a] as f32) * 0.5)
             .fold(0.0, f32::max);
-        let _ = BUNNY_SCALE; // the scale cancels in the normalisation
-        let positions = core::array::from_fn(|k| {
-            let p = BUNNY_POSITIONS[k];
-            Vec3::new(
+        let (positions, normals) = storage.get_mut(..WORKLOAD_VEC3S)?.split_at_mut(BUNNY_VERTS);
+        for (out, p) in positions.iter_mut().zip(&BUNNY_POSITIONS) {
+            *out = Vec3::new(
                 S::from_f32((p[0] as f32 - c[0]) / half),
                 S::from_f32((p[1] as f32 - c[1]) / half),
                 S::from_f32((p[2] as f32 - c[2]) / half),
-            )
-        });
-        let unit = 1.0 / 32767.0;
-        let normals = core::array::from_fn(|k| {
-            let n = BUNNY_NORMALS[k];
-            Vec3::new(
-                S::from_f32(n[0] as f32 * unit),
-                S::from_f32(n[1] as f32 * unit),
-                S::from_f32(n[2] as f32 * unit),
-            )
-        });
-        let projection = Projection::perspective(S::from_i32(200), WIDTH, HEIGHT);
-        let pipeline = Pipeline::new(
-            projection,
-            WIDTH,
-            HEIGHT,
-            S::from_f32(0.5),
-            S::from_i32(10),
-            S::from_i32(16),
-        )
-        .ok()?
-        .with_cull(Cull::Back);
-        Some(Self {
-            positions,
-            normals,
-            pipeline,
+            );
+        }
+        let (faces, verts): (&[Vec3<S>], &[Vec3<S>]) = if gouraud {
+            let unit = 1.0 / 32767.0;
+            let out = &mut normals[..BUNNY_VERTS];
+            for (o, n) in out.iter_mut().zip(&BUNNY_NORMALS) {
+                *o = Vec3::new(
+                    S::from_f32(n[0] as f32 * unit),
+                    S::from_f32(n[1] as f32 * unit),
+                    S::from_f32(n[2] as f32 * unit),
+                );
+            }
+            (&[], out)
+        } else {
+            builtin::BUNNY_MESH.face_normals_into(normals);
+            (normals, &[])
+        };
+        let mesh = PreparedMesh::new(positions, &BUNNY_TRIANGLES, faces, verts, &[], true).ok()?;
+        let white = Rgb565::WHITE;
+        let material = if gouraud {
+            Material::Gouraud(white)
+        } else {
+            Material::Flat(white)
+        };
+        let object = PreparedObject::new(mesh, Pose::default(), material).ok()?;
+        let view = View {
             camera: Camera::from_angles(Vec3::ZERO, Euler::ZERO),
-            ramp: core::array::from_fn(|i| grey565(i as u8)),
+            projection: Projection::perspective(S::from_i32(200), WIDTH, HEIGHT),
+            width: WIDTH,
+            height: HEIGHT,
+        };
+        // L = (1,1,1)/√3 towards the light in the workload's eye space,
+        // which is world space for this camera (at the origin, zero angles).
+        let light = Light {
+            direction: [1.0, 1.0, 1.0],
+            ambient: 0.2,
+            diffuse: 0.8,
+        };
+        // Near 0.5 and far 10 as glFrustum(−0.4, 0.4, −0.3, 0.3, 0.5, 10).
+        let renderer =
+            Renderer::from_view(view, S::from_f32(0.5), S::from_i32(10), &light, grey565(0))
+                .ok()?;
+        Some(Self {
+            renderer,
+            object: [object],
         })
     }
 
-    /// Renders frame `k` of [`WORKLOAD_TURN`] of W1 (`gouraud == false`) or
-    /// W2 into whole-frame buffers (cleared first), with `flat`/`lit` as
-    /// per-vertex scratch. Returns the triangles drawn.
-    #[allow(clippy::too_many_arguments)]
+    /// Renders frame `k` of [`WORKLOAD_TURN`] into whole-frame buffers
+    /// (colour cleared to the background by the draw, depth cleared here),
+    /// with `scratch` (at least [`BUNNY_VERTS`]) for the projected
+    /// vertices. Returns the triangles drawn.
     pub fn frame(
-        &self,
-        gouraud: bool,
+        &mut self,
         k: u32,
         color: &mut [Color],
         depth: &mut [u16],
-        flat: &mut [Vertex<S, ()>; BUNNY_VERTS],
-        lit: &mut [Vertex<S, Intensity<S>>; BUNNY_VERTS],
-        proj0: &mut [MeshVertex<0>; BUNNY_VERTS],
-        proj1: &mut [MeshVertex<1>; BUNNY_VERTS],
+        scratch: &mut [MeshVertex<1>],
     ) -> u32 {
         let (w, h) = (WIDTH, HEIGHT);
         let Ok(mut fb) = Framebuffer::new(&mut color[..FRAME_PIXELS], w, h, w as usize) else {
@@ -406,56 +456,15 @@ impl<S: Scalar> Workload<S> {
         let Ok(mut z) = DepthBuffer::new(&mut depth[..FRAME_PIXELS], w, h, w as usize, 0) else {
             return 0;
         };
-        fb.clear(grey565(0));
         z.clear();
         let yaw = core::f32::consts::TAU * k as f32 / WORKLOAD_TURN as f32;
-        let pose = Pose::new(
+        self.object[0].pose = Pose::new(
             Vec3::new(S::ZERO, S::ZERO, S::from_f32(-2.6)),
             Euler::new(S::ZERO, S::ZERO, S::from_f32(yaw)),
         );
-        let m = self.camera.object_to_view(&pose);
-        // L = (1,1,1)/√3 in eye space is (1,−1,−1)/√3 in view space; dot
-        // products are taken in object space with L_obj = Rᵀ·L_view.
-        let k3 = S::from_f32(0.577_350_26);
-        let l = m.matrix.transpose().mul_vec3(Vec3::new(k3, -k3, -k3));
-        let (ambient, diffuse) = (S::from_f32(0.2), S::from_f32(0.8));
-        let shade = |n: Vec3<S>| ambient + diffuse * n.dot(l).max_of(S::ZERO);
-        let pipe = &self.pipeline;
-        let mut drawn = 0;
-        if gouraud {
-            for ((v, &p), &n) in lit.iter_mut().zip(&self.positions).zip(&self.normals) {
-                *v = Vertex::new(m.transform_point3(p), Intensity(shade(n)));
-            }
-            pipe.project_vertices(&lit[..], &mut proj1[..]);
-            let sh = Gouraud::new(&self.ramp);
-            for t in &BUNNY_TRIANGLES {
-                let t = t.map(u32::from);
-                if let Ok(Some(tri)) = pipe.mesh_triangle(&lit[..], &proj1[..], t) {
-                    fill_polygon(&mut fb, &mut z, &sh, tri.as_slice());
-                    drawn += 1;
-                }
-            }
-        } else {
-            for (v, &p) in flat.iter_mut().zip(&self.positions) {
-                *v = Vertex::new(m.transform_point3(p), ());
-            }
-            pipe.project_vertices(&flat[..], &mut proj0[..]);
-            for t in &BUNNY_TRIANGLES {
-                let t = t.map(u32::from);
-                if let Ok(Some(tri)) = pipe.mesh_triangle(&flat[..], &proj0[..], t) {
-                    let n = self.face_normal(t);
-                    let sh = Flat(grey565(scene::quantise_intensity(shade(n))));
-                    fill_polygon(&mut fb, &mut z, &sh, tri.as_slice());
-                    drawn += 1;
-                }
-            }
+        match self.renderer.project(&mut self.object, scratch) {
+            Ok(frame) => frame.draw(&mut fb, &mut z).drawn,
+            Err(_) => 0,
         }
-        drawn
-    }
-
-    /// The unit face normal of triangle `t` (object space).
-    fn face_normal(&self, t: [u32; 3]) -> Vec3<S> {
-        let [a, b, c] = t.map(|i| self.positions[i as usize]);
-        (b - a).cross(c - a).try_normalize().unwrap_or(Vec3::ZERO)
     }
 }

@@ -39,7 +39,8 @@ mod kernels;
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hio, hprintln, nr, syscall1};
 use panic_semihosting as _;
-use sightline::pipeline::{Intensity, MeshVertex, Vertex};
+use sightline::math::Vec3;
+use sightline::pipeline::MeshVertex;
 use sightline::scalar::I16F16;
 use sightline::scalar::Scalar;
 use sightline::scene::Color;
@@ -172,8 +173,8 @@ fn main() -> ! {
                 _ => usage(cmd),
             };
             let drawn = match scalar {
-                "I16F16" => workload::<I16F16>(gouraud, n),
-                "f32" => workload::<f32>(gouraud, n),
+                "I16F16" => workload::<I16F16>(gouraud, n, |b| b.0),
+                "f32" => workload::<f32>(gouraud, n, |b| b.1),
                 _ => usage(cmd),
             };
             match drawn {
@@ -191,6 +192,23 @@ fn main() -> ! {
 const FRAME: usize = frames::FRAME_PIXELS;
 static mut COLOR: [Color; FRAME] = [Color::new(0, 0, 0); FRAME];
 static mut DEPTH: [u16; FRAME] = [0; FRAME];
+/// Prepared-scene storage: the largest of the built-in scenes and W1/W2.
+const VEC3S: usize = if frames::STORAGE.vec3s > frames::WORKLOAD_VEC3S {
+    frames::STORAGE.vec3s
+} else {
+    frames::WORKLOAD_VEC3S
+};
+const VERTICES: usize = if frames::STORAGE.vertices > frames::BUNNY_VERTS {
+    frames::STORAGE.vertices
+} else {
+    frames::BUNNY_VERTS
+};
+static mut VEC3_FX: [Vec3<I16F16>; VEC3S] = [Vec3::ZERO; VEC3S];
+static mut VEC3_F32: [Vec3<f32>; VEC3S] = [Vec3::ZERO; VEC3S];
+static mut SCRATCH: [MeshVertex<1>; VERTICES] = [MeshVertex {
+    outcode: 0,
+    screen: sightline::raster::ScreenVertex::new(0, 0, 0, [0]),
+}; VERTICES];
 
 /// The whole-frame colour and depth buffers (in .bss, not on the stack).
 fn frame_buffers() -> (&'static mut [Color], &'static mut [u16]) {
@@ -204,9 +222,28 @@ fn frame_buffers() -> (&'static mut [Color], &'static mut [u16]) {
     }
 }
 
+type SceneBuffers = (
+    &'static mut [Vec3<I16F16>],
+    &'static mut [Vec3<f32>],
+    &'static mut [MeshVertex<1>],
+);
+
+/// Prepared-scene storage in both scalars and the frame scratch (in .bss).
+fn scene_buffers() -> SceneBuffers {
+    // SAFETY: as `frame_buffers`: taken once per run, single-threaded.
+    unsafe {
+        (
+            &mut *core::ptr::addr_of_mut!(VEC3_FX),
+            &mut *core::ptr::addr_of_mut!(VEC3_F32),
+            &mut *core::ptr::addr_of_mut!(SCRATCH),
+        )
+    }
+}
+
 /// Renders every scene in both scalars; prints hashes and the f32 rows.
 fn all_frames() -> bool {
     let (color, depth) = frame_buffers();
+    let (fx3, f3, scratch) = scene_buffers();
     let mut out = hio::hstdout().ok();
     let mut ok = true;
     for name in frames::SCENES {
@@ -223,9 +260,9 @@ fn all_frames() -> bool {
                 }
             };
             let r = if fx {
-                frames::render_scene::<I16F16>(name, color, depth, dump)
+                frames::render_scene::<I16F16>(name, fx3, scratch, color, depth, dump)
             } else {
-                frames::render_scene::<f32>(name, color, depth, dump)
+                frames::render_scene::<f32>(name, f3, scratch, color, depth, dump)
             };
             match r {
                 Ok(h) => hprintln!("frame {} {} {:#018x}", name, scalar, h),
@@ -273,27 +310,20 @@ fn row_line(line: &mut [u8], name: &str, y: u16, px: &[Color]) -> usize {
     n
 }
 
-/// Runs `n` frames of W1 or W2 (frames 0, 10, 20, … of a turn of 200).
-fn workload<S: Scalar>(gouraud: bool, n: u32) -> Option<u32> {
-    const V: usize = frames::BUNNY_VERTS;
-    let wl = frames::Workload::<S>::new()?;
+/// Runs `n` frames of W1 or W2 (frames 0, 10, 20, … of a turn of 200),
+/// with the storage `pick` chooses for scalar `S`.
+fn workload<S: Scalar>(
+    gouraud: bool,
+    n: u32,
+    pick: impl FnOnce(SceneBuffers) -> &'static mut [Vec3<S>],
+) -> Option<u32> {
+    let buffers = scene_buffers();
+    let scratch = buffers.2;
+    let mut wl = frames::Workload::<S>::new(gouraud, pick((buffers.0, buffers.1, &mut [])))?;
     let (color, depth) = frame_buffers();
-    let mut flat = [Vertex::new(sightline::math::Vec3::ZERO, ()); V];
-    let mut lit = [Vertex::new(sightline::math::Vec3::ZERO, Intensity(S::ZERO)); V];
-    let mut p0 = [MeshVertex::default(); V];
-    let mut p1 = [MeshVertex::default(); V];
     let mut drawn = 0;
     for i in 0..n {
-        drawn = wl.frame(
-            gouraud,
-            i * frames::WORKLOAD_STEP,
-            color,
-            depth,
-            &mut flat,
-            &mut lit,
-            &mut p0,
-            &mut p1,
-        );
+        drawn = wl.frame(i * frames::WORKLOAD_STEP, color, depth, scratch);
     }
     Some(drawn)
 }

@@ -21,9 +21,13 @@
 #![no_main]
 
 use core::hint::black_box;
+use sightline::math::Vec3;
+use sightline::pipeline::MeshVertex;
 use sightline::raster::DepthBuffer;
 use sightline::scalar::I16F16;
-use sightline::scene::{self, Color, Scene, builtin};
+#[cfg(feature = "scene-all")]
+use sightline::scene;
+use sightline::scene::{Color, PreparedObject, Renderer, Scene, Storage, builtin};
 use sightline::target::Band;
 
 #[cfg(not(any(
@@ -61,44 +65,87 @@ const BAND: usize = WIDTH as usize * ROWS as usize;
 static mut COLOR: [Color; BAND] = [Color::new(0, 0, 0); BAND];
 static mut DEPTH: [u16; BAND] = [0; BAND];
 
+/// The largest storage any scene of [`SCENES`] needs.
+const STORAGE: Storage = {
+    let mut s = Storage {
+        vec3s: 0,
+        objects: 0,
+        vertices: 0,
+    };
+    let mut i = 0;
+    while i < SCENES.len() {
+        let n = SCENES[i].storage();
+        if n.vec3s > s.vec3s {
+            s.vec3s = n.vec3s;
+        }
+        if n.objects > s.objects {
+            s.objects = n.objects;
+        }
+        if n.vertices > s.vertices {
+            s.vertices = n.vertices;
+        }
+        i += 1;
+    }
+    s
+};
+static mut VEC3S: [Vec3<I16F16>; STORAGE.vec3s] = [Vec3::ZERO; STORAGE.vec3s];
+static mut SCRATCH: [MeshVertex<1>; STORAGE.vertices] = [MeshVertex {
+    outcode: 0,
+    screen: sightline::raster::ScreenVertex::new(0, 0, 0, [0]),
+}; STORAGE.vertices];
+
 /// FNV-1a over every pixel of every scene, row by row.
 fn render() -> u64 {
     // SAFETY: the only references to the buffers, taken once.
-    let (color, depth) = unsafe {
+    let (color, depth, vec3s, scratch) = unsafe {
         (
             &mut *core::ptr::addr_of_mut!(COLOR),
             &mut *core::ptr::addr_of_mut!(DEPTH),
+            &mut *core::ptr::addr_of_mut!(VEC3S),
+            &mut *core::ptr::addr_of_mut!(SCRATCH),
         )
     };
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
     for scene in black_box(&SCENES).iter() {
-        let Ok(view) = scene.view::<I16F16>(WIDTH, HEIGHT) else {
+        #[cfg(feature = "scene-all")]
+        if !scene.spheres.is_empty() {
+            let Ok(view) = scene.view::<I16F16>(WIDTH, HEIGHT) else {
+                return 0;
+            };
+            let Ok(ray) = scene::RayScene::new(scene, &view) else {
+                return 0;
+            };
+            for y0 in (0..HEIGHT).step_by(ROWS as usize) {
+                let w = WIDTH as usize;
+                let Ok(mut band) = Band::new(&mut color[..], WIDTH, ROWS, w, y0 as i32) else {
+                    return 0;
+                };
+                ray.render(&mut band);
+                hash_pixels(&mut h, &color[..]);
+            }
+            continue;
+        }
+        // Prepared once, projected once per frame, drawn per strip.
+        let mut objects = [PreparedObject::EMPTY; STORAGE.objects];
+        let Ok(objects) = scene.prepare(&mut vec3s[..], &mut objects) else {
             return 0;
         };
-        #[cfg(feature = "scene-all")]
-        let ray = if scene.spheres.is_empty() {
-            None
-        } else {
-            scene::RayScene::new(scene, &view).ok()
+        let Ok(renderer) = Renderer::<I16F16>::new(scene, WIDTH, HEIGHT) else {
+            return 0;
+        };
+        let Ok(frame) = renderer.project(objects, &mut scratch[..]) else {
+            return 0;
         };
         for y0 in (0..HEIGHT).step_by(ROWS as usize) {
             let w = WIDTH as usize;
             let Ok(mut band) = Band::new(&mut color[..], WIDTH, ROWS, w, y0 as i32) else {
                 return 0;
             };
-            #[cfg(feature = "scene-all")]
-            if let Some(r) = &ray {
-                r.render(&mut band);
-                hash_pixels(&mut h, &color[..]);
-                continue;
-            }
             let Ok(mut z) = DepthBuffer::new(&mut depth[..], WIDTH, ROWS, w, y0 as i32) else {
                 return 0;
             };
             z.clear();
-            if scene::render_raster(scene, &view, &mut band, &mut z).is_err() {
-                return 0;
-            }
+            frame.draw(&mut band, &mut z);
             hash_pixels(&mut h, &color[..]);
         }
     }

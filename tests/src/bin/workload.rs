@@ -84,7 +84,8 @@ fn fill(mode: FillMode, n: u32, passes: Option<u32>) {
 }
 
 fn run<S: Scalar>(shading: Shading, n: u32, passes: Option<u32>) {
-    let mut w = Workload::<S>::new(Model::bunny(), shading);
+    let model = Model::bunny();
+    let mut w = Workload::<S>::new(&model, shading);
     let mut frame = Frame::default();
     let mut tris = 0u64;
     let med = time_frames(n, passes, |k| {

@@ -83,6 +83,7 @@ static CUBE_TRIANGLES: [[u16; 3]; 12] = [
 
 /// The unit cube (side 2 around the origin).
 pub static CUBE_MESH: MeshData<'static> = MeshData {
+    closed: true,
     positions: &CUBE_POSITIONS,
     scale: 1.0 / 1024.0,
     triangles: &CUBE_TRIANGLES,
@@ -100,6 +101,7 @@ static QUAD_TRIANGLES: [[u16; 3]; 2] = [[0, 3, 2], [0, 2, 1]];
 
 /// A horizontal square floor, 8 units wide, facing +Y.
 pub static FLOOR_MESH: MeshData<'static> = MeshData {
+    closed: false,
     positions: &QUAD_POSITIONS,
     scale: 4.0 / 1024.0,
     triangles: &QUAD_TRIANGLES,
@@ -143,6 +145,7 @@ pub static CUBE: Scene<'static> = Scene {
 /// The Stanford bunny (about 10 units tall, feet at y = 0) with vertex
 /// normals.
 pub static BUNNY_MESH: MeshData<'static> = MeshData {
+    closed: true,
     positions: &BUNNY_POSITIONS,
     scale: BUNNY_SCALE,
     triangles: &BUNNY_TRIANGLES,
@@ -152,6 +155,7 @@ pub static BUNNY_MESH: MeshData<'static> = MeshData {
 
 /// A floor 32 units wide.
 pub static BIG_FLOOR_MESH: MeshData<'static> = MeshData {
+    closed: false,
     positions: &QUAD_POSITIONS,
     scale: 16.0 / 1024.0,
     triangles: &QUAD_TRIANGLES,
@@ -271,6 +275,7 @@ static CORRIDOR_TRIANGLES: [[u16; 3]; 6] = [
 
 /// The corridor's floor and walls.
 pub static CORRIDOR_MESH: MeshData<'static> = MeshData {
+    closed: false,
     positions: &CORRIDOR_POSITIONS,
     scale: 1.0 / 256.0,
     triangles: &CORRIDOR_TRIANGLES,

@@ -23,9 +23,11 @@ use mipidsi::interface::SpiInterface;
 use mipidsi::models::ST7789;
 use mipidsi::options::ColorInversion;
 use rp2040_hal::{self as hal, Clock, fugit::RateExtU32, pac};
+use sightline::math::Vec3;
+use sightline::pipeline::MeshVertex;
 use sightline::raster::DepthBuffer;
-use sightline::scalar::I16F16;
-use sightline::scene::{self, Color, Scene, builtin};
+use sightline::scalar::{I16F16, Scalar};
+use sightline::scene::{Color, PreparedObject, Renderer, Storage, builtin};
 use sightline::target::Band;
 
 /// The second-stage bootloader for the W25Q080 flash of the Pico (and
@@ -99,18 +101,25 @@ fn main() -> ! {
 
     let mut color = [Color::new(0, 0, 0); BAND_PIXELS];
     let mut depth = [0u16; BAND_PIXELS];
-    let mut frame: u32 = 0;
+    // Prepared once: positions and normals in I16F16, then the renderer
+    // (camera, projection, clip volume, light).
+    let scene = &builtin::BUNNY;
+    const NEED: Storage = builtin::BUNNY.storage();
+    let mut vec3s = [Vec3::<I16F16>::ZERO; NEED.vec3s];
+    let mut objects = [PreparedObject::EMPTY; NEED.objects];
+    let objects = scene.prepare(&mut vec3s, &mut objects).unwrap();
+    let renderer = Renderer::<I16F16>::new(scene, SIDE, SIDE).unwrap();
+    let mut scratch = [MeshVertex::default(); NEED.vertices];
+    let yaw0 = objects[1].pose.angles.yaw;
+    let step = I16F16::from_f32(core::f32::consts::TAU / 64.0);
+    let mut frame: i32 = 0;
     loop {
-        // Turn the bunny 1/64 of a turn per frame.
-        let mut objects = builtin::BUNNY.objects.iter().copied();
-        let (floor, mut bunny) = (objects.next().unwrap(), objects.next().unwrap());
-        bunny.pose.angles.yaw = 0.5 + frame as f32 * (core::f32::consts::TAU / 64.0);
-        let objs = [floor, bunny];
-        let scene = Scene {
-            objects: &objs,
-            ..builtin::BUNNY
+        // Turn the bunny 1/64 of a turn per frame: each vertex is
+        // transformed and projected once per frame, then drawn per strip.
+        objects[1].pose.angles.yaw = yaw0 + step * I16F16::from_i32(frame % 64);
+        let Ok(projected) = renderer.project(objects, &mut scratch) else {
+            continue;
         };
-        let view = scene.view::<I16F16>(SIDE, SIDE).unwrap();
         for y0 in (0..SIDE).step_by(BAND_ROWS as usize) {
             let rows = BAND_ROWS.min(SIDE - y0);
             let n = SIDE as usize * rows as usize;
@@ -119,8 +128,7 @@ fn main() -> ! {
             let mut zb =
                 DepthBuffer::new(&mut depth[..n], SIDE, rows, SIDE as usize, y0 as i32).unwrap();
             zb.clear();
-            // A scene error leaves the strip as the background.
-            let _ = scene::render_raster(&scene, &view, &mut band, &mut zb);
+            projected.draw(&mut band, &mut zb);
             // Push the strip to rows y0..y0+rows of the display.
             let _ = display.set_pixels(0, y0, SIDE - 1, y0 + rows - 1, color[..n].iter().copied());
         }

@@ -1,0 +1,528 @@
+//! The raster path over a prepared scene: [`Renderer::project`] once per
+//! frame, then [`Frame::draw`] once per band (or once for a whole frame).
+//!
+//! Per frame and object, each vertex is transformed to view space and
+//! projected exactly once, with its clip outcode, into the caller's
+//! scratch ([`MeshVertex`]). Per triangle, [`Frame::draw`] then
+//!
+//! 1. rejects it if it lies wholly outside one plane, or (when all three
+//!    vertices are inside the volume) outside the band's rows;
+//! 2. culls it in screen space by its winding (i32 cross product);
+//! 3. lights it (flat shading: one dot product with the prepared face
+//!    normal), and scan-converts it.
+//!
+//! Only triangles that cross a plane of the volume (near, far with
+//! `clip-far`, or a side plane's guard band) are rebuilt in view space and
+//! go through Sutherland–Hodgman clipping.
+
+use super::prepared::{ObjectFrame, PreparedMesh, PreparedObject};
+use super::shade::Lighting;
+use super::{Color, Light, Material, Scene, SceneError, View};
+#[cfg(feature = "perspective")]
+use crate::pipeline::Attributes;
+#[cfg(feature = "gouraud")]
+use crate::pipeline::Intensity;
+#[cfg(feature = "texture")]
+use crate::pipeline::Uv;
+#[cfg(feature = "perspective")]
+use crate::pipeline::UvPerspective;
+use crate::pipeline::{MeshVertex, OUTCODE_UNUSABLE, Pipeline, Varyings, Vertex};
+#[cfg(feature = "gouraud")]
+use crate::raster::Gouraud;
+#[cfg(feature = "perspective")]
+use crate::raster::PerspectiveTexture;
+#[cfg(feature = "texture")]
+use crate::raster::{AffineTexture, RepeatPow2, Texture};
+use crate::raster::{DepthTest, FillOutcome, Flat, ScreenVertex, Shade, SpanShader, fill_polygon};
+use crate::scalar::Scalar;
+use crate::target::{Rect, Target};
+
+/// Guard band of the clip volume, in pixels.
+const GUARD: i32 = 16;
+
+/// What [`Frame::draw`] did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RasterStats {
+    /// Triangles considered (every triangle of every object, per call).
+    pub triangles: u32,
+    /// Triangles that emitted spans.
+    pub drawn: u32,
+    /// Triangles dropped by face culling.
+    pub culled: u32,
+    /// Triangles that went through the clipper.
+    pub clipped: u32,
+    /// Triangles the pipeline could not draw (clip or projection
+    /// overflow, e.g. saturated fixed point); the rest is still drawn.
+    pub errors: u32,
+}
+
+/// The per-view part of a prepared scene: camera, projection and clip
+/// volume, light and background, in scalar `S`. Build it once; change the
+/// camera or the light between frames.
+///
+/// # Examples
+///
+/// A built-in scene rendered into a 240×240 RGB565 frame in I16F16:
+///
+/// ```
+/// use sightline::math::Vec3;
+/// use sightline::pipeline::MeshVertex;
+/// use sightline::raster::NoDepth;
+/// use sightline::scalar::I16F16;
+/// use sightline::scene::{builtin, Color, PreparedObject, Renderer};
+/// use sightline::target::Framebuffer;
+///
+/// let scene = &builtin::CUBE;
+/// let need = scene.storage();
+/// let mut vec3s = vec![Vec3::<I16F16>::ZERO; need.vec3s];
+/// let mut objects = vec![PreparedObject::EMPTY; need.objects];
+/// let objects = scene.prepare(&mut vec3s, &mut objects).unwrap();
+/// let renderer = Renderer::<I16F16>::new(scene, 240, 240).unwrap();
+///
+/// let mut pixels = vec![Color::new(0, 0, 0); 240 * 240];
+/// let mut fb = Framebuffer::new(&mut pixels, 240, 240, 240).unwrap();
+/// let mut scratch = vec![MeshVertex::default(); need.vertices];
+/// let frame = renderer.project(objects, &mut scratch).unwrap();
+/// let stats = frame.draw(&mut fb, &mut NoDepth);
+/// assert!(stats.drawn > 0);
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct Renderer<S> {
+    view: View<S>,
+    pipeline: Pipeline<S>,
+    light: Lighting<S>,
+    background: Color,
+}
+
+impl<S: Scalar> Renderer<S> {
+    /// The camera, projection, clip volume (`scene.near`, `scene.far`),
+    /// light and background of `scene` for a `width`×`height` image.
+    ///
+    /// # Errors
+    /// [`SceneError::NonFinite`] for a NaN or infinite number in the
+    /// camera, projection, light or depth range; [`SceneError::Camera`],
+    /// [`SceneError::BadProjection`], [`SceneError::Pipeline`].
+    pub fn new(scene: &Scene<'_>, width: u16, height: u16) -> Result<Self, SceneError> {
+        scene.validate_view()?;
+        let view = scene.view::<S>(width, height)?;
+        Self::from_view(
+            view,
+            S::from_f32(scene.near),
+            S::from_f32(scene.far),
+            &scene.light,
+            scene.background,
+        )
+    }
+
+    /// A renderer for a camera and projection you built yourself (for
+    /// example a focus distance in pixels), clipping at view depths
+    /// `near` and `far`.
+    ///
+    /// # Errors
+    /// [`SceneError::NonFinite`] for a non-finite light,
+    /// [`SceneError::Pipeline`] for a bad depth range or projection.
+    pub fn from_view(
+        view: View<S>,
+        near: S,
+        far: S,
+        light: &Light,
+        background: Color,
+    ) -> Result<Self, SceneError> {
+        if !super::light_is_finite(light) {
+            return Err(SceneError::NonFinite { what: "light" });
+        }
+        let pipeline = Pipeline::new(
+            view.projection,
+            view.width,
+            view.height,
+            near,
+            far,
+            S::from_i32(GUARD),
+        )
+        .map_err(SceneError::Pipeline)?;
+        Ok(Self {
+            view,
+            pipeline,
+            light: Lighting::new(light),
+            background,
+        })
+    }
+
+    /// Camera, projection and image size.
+    #[must_use]
+    pub fn view(&self) -> &View<S> {
+        &self.view
+    }
+
+    /// Replaces the camera (the projection and clip volume stay).
+    pub fn set_camera(&mut self, camera: crate::camera::Camera<S>) {
+        self.view.camera = camera;
+    }
+
+    /// Replaces the light.
+    ///
+    /// # Errors
+    /// [`SceneError::NonFinite`] if a value is NaN or infinite; the light
+    /// is unchanged then.
+    pub fn set_light(&mut self, light: &Light) -> Result<(), SceneError> {
+        if !super::light_is_finite(light) {
+            return Err(SceneError::NonFinite { what: "light" });
+        }
+        self.light = Lighting::new(light);
+        Ok(())
+    }
+
+    /// The background colour [`Frame::draw`] fills with.
+    #[must_use]
+    pub fn background(&self) -> Color {
+        self.background
+    }
+
+    /// Transforms and projects every vertex of every object exactly once,
+    /// at the objects' current poses, into `scratch` (at least as many
+    /// entries as the objects have vertices; [`Scene::storage`] says how
+    /// many). The returned frame draws them, once or band by band.
+    ///
+    /// # Errors
+    /// [`SceneError::ScratchTooSmall`]; nothing is projected then.
+    pub fn project<'f, 'a>(
+        &'f self,
+        objects: &'f mut [PreparedObject<'a, S>],
+        scratch: &'f mut [MeshVertex<1>],
+    ) -> Result<Frame<'f, 'a, S>, SceneError> {
+        let needed: usize = objects.iter().map(|o| o.mesh.positions().len()).sum();
+        if scratch.len() < needed {
+            return Err(SceneError::ScratchTooSmall {
+                needed,
+                given: scratch.len(),
+            });
+        }
+        let mut first = 0;
+        for obj in objects.iter_mut() {
+            let rot = obj.pose.angles.to_mat3();
+            let to_world = crate::math::Affine3::new(rot, obj.pose.origin);
+            let to_view = self.view.camera.world_to_view().mul_affine(&to_world);
+            let light = self.light.in_object(&rot);
+            let mesh = obj.mesh;
+            let n = mesh.positions().len();
+            let out = &mut scratch[first..first + n];
+            let pipe = &self.pipeline;
+            let pos = |k: usize| to_view.transform_point3(mesh.positions()[k]);
+            match obj.material {
+                #[cfg(feature = "gouraud")]
+                Material::Gouraud(_) => {
+                    for (k, o) in out.iter_mut().enumerate() {
+                        let i = light.intensity(mesh.vertex_normals()[k]);
+                        *o = pipe.project_vertex(&Vertex::new(pos(k), Intensity(i)));
+                    }
+                }
+                #[cfg(feature = "perspective")]
+                Material::Texture { mode, .. } if mode != super::TextureMode::Affine => {
+                    for (k, o) in out.iter_mut().enumerate() {
+                        *o = pipe.project_vertex(&Vertex::new(pos(k), DepthQ));
+                    }
+                }
+                _ => {
+                    for (k, o) in out.iter_mut().enumerate() {
+                        let v = pipe.project_vertex::<(), 0>(&Vertex::new(pos(k), ()));
+                        *o = MeshVertex {
+                            outcode: v.outcode,
+                            screen: ScreenVertex::new(v.screen.x, v.screen.y, v.screen.z, [0]),
+                        };
+                    }
+                }
+            }
+            obj.frame = Some(ObjectFrame {
+                to_view,
+                light,
+                first,
+            });
+            first += n;
+        }
+        Ok(Frame {
+            renderer: self,
+            objects,
+            vertices: scratch,
+        })
+    }
+}
+
+/// The perspective varying `q = near/z` alone: what a perspective texture
+/// needs per vertex besides the mesh's texture coordinates.
+#[cfg(feature = "perspective")]
+#[derive(Clone, Copy, Debug)]
+struct DepthQ;
+
+#[cfg(feature = "perspective")]
+impl<S: Scalar> Attributes<S> for DepthQ {
+    fn lerp(self, _other: Self, _t: S) -> Self {
+        self
+    }
+    fn is_finite(&self) -> bool {
+        true
+    }
+}
+
+#[cfg(feature = "perspective")]
+impl<S: Scalar> Varyings<S, 1> for DepthQ {
+    fn to_varyings(&self, q: S) -> [i32; 1] {
+        let q = q.clamp_to(S::ZERO, S::ONE);
+        [q.to_subpixel(crate::raster::PERSPECTIVE_Q_BITS)
+            .unwrap_or(1)
+            .max(1)]
+    }
+}
+
+/// One frame of a prepared scene, projected: draw it whole or band by
+/// band. Drawing changes nothing in the frame, so every band sees the same
+/// vertices, and a frame drawn in bands equals the frame drawn whole.
+#[derive(Debug)]
+pub struct Frame<'f, 'a, S> {
+    renderer: &'f Renderer<S>,
+    objects: &'f [PreparedObject<'a, S>],
+    vertices: &'f [MeshVertex<1>],
+}
+
+/// One triangle's path through [`Frame::draw`].
+struct Tri<'m, 'v, S> {
+    mesh: &'m PreparedMesh<'m, S>,
+    frame: &'m ObjectFrame<S>,
+    verts: &'v [MeshVertex<1>],
+    pipe: &'m Pipeline<S>,
+    rows: (i32, i32),
+}
+
+impl<S: Scalar> Tri<'_, '_, S> {
+    /// Draws triangle `tri`: `inside(k, vertex)` gives the varyings of an
+    /// unclipped vertex, `attr(k)` the view-space attributes of a vertex
+    /// to clip, `shader(t)` the shader once the triangle is known to be
+    /// visible.
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn draw<T, Z, A, Sh, const K: usize>(
+        &self,
+        target: &mut T,
+        depth: &mut Z,
+        stats: &mut RasterStats,
+        tri: [u16; 3],
+        inside: impl Fn(u16, &MeshVertex<1>) -> [i32; K],
+        attr: impl Fn(u16) -> A,
+        shader: impl FnOnce(&[ScreenVertex<K>]) -> Sh,
+    ) where
+        T: Target,
+        Z: DepthTest,
+        A: Varyings<S, K>,
+        Sh: SpanShader<K, Color = T::Color>,
+    {
+        stats.triangles += 1;
+        let get = |k: u16| self.verts.get(k as usize).copied().unwrap_or_default();
+        let (a, b, c) = (get(tri[0]), get(tri[1]), get(tri[2]));
+        let outcome = if a.outcode | b.outcode | c.outcode == 0 {
+            let (ya, yb, yc) = (a.screen.y, b.screen.y, c.screen.y);
+            // Rows with centres in [y_min, y_max): see raster's fill rule.
+            let top = (ya.min(yb).min(yc) + 7) >> 4;
+            let bottom = (ya.max(yb).max(yc) + 7) >> 4;
+            if bottom <= self.rows.0 || top >= self.rows.1 {
+                return;
+            }
+            let s = [(tri[0], a), (tri[1], b), (tri[2], c)]
+                .map(|(k, v)| ScreenVertex::new(v.screen.x, v.screen.y, v.screen.z, inside(k, &v)));
+            if !self.pipe.keep(&s) {
+                stats.culled += 1;
+                return;
+            }
+            fill_polygon(target, depth, &shader(&s), &s)
+        } else if a.outcode & b.outcode & c.outcode & !OUTCODE_UNUSABLE != 0 {
+            return;
+        } else {
+            stats.clipped += 1;
+            let poly = tri.map(|k| {
+                let p = self.mesh.positions()[k as usize];
+                Vertex::new(self.frame.to_view.transform_point3(p), attr(k))
+            });
+            match self.pipe.project_polygon(&poly) {
+                Ok(Some(s)) => fill_polygon(target, depth, &shader(&s), &s),
+                Ok(None) => {
+                    stats.culled += 1;
+                    return;
+                }
+                Err(_) => {
+                    stats.errors += 1;
+                    return;
+                }
+            }
+        };
+        if outcome == FillOutcome::Drawn {
+            stats.drawn += 1;
+        }
+    }
+}
+
+impl<S: Scalar> Frame<'_, '_, S> {
+    /// Fills the target's clip rectangle with the background, then draws
+    /// every triangle of every object with `depth` deciding visibility.
+    /// Works with any [`Target`]: a [`Band`](crate::target::Band) and a
+    /// band-sized depth buffer draw one strip; only the triangles that
+    /// reach the band's rows get any set-up.
+    ///
+    /// # Panics
+    /// Never; nothing is written outside the target.
+    pub fn draw<T, Z>(&self, target: &mut T, depth: &mut Z) -> RasterStats
+    where
+        T: Target<Color = Color>,
+        Z: DepthTest,
+    {
+        let mut clip: Rect = target.clip_rect();
+        if let Some(r) = depth.clip_rect() {
+            clip = clip.intersect(&r);
+        }
+        let bg = target.clip_rect();
+        if !bg.is_empty() {
+            for y in bg.y0..bg.y1 {
+                target.fill_solid(y, bg.x0, (bg.x1 - bg.x0) as u32, self.renderer.background);
+            }
+        }
+        let mut stats = RasterStats::default();
+        if clip.is_empty() {
+            return stats;
+        }
+        for obj in self.objects {
+            let Some(fr) = &obj.frame else { continue };
+            let mesh = &obj.mesh;
+            let n = mesh.positions().len();
+            let Some(verts) = self.vertices.get(fr.first..fr.first + n) else {
+                continue;
+            };
+            let pipe = self.renderer.pipeline.with_cull(obj.cull);
+            let t = Tri {
+                mesh,
+                frame: fr,
+                verts,
+                pipe: &pipe,
+                rows: (clip.y0, clip.y1),
+            };
+            let (target, depth, stats) = (&mut *target, &mut *depth, &mut stats);
+            match obj.material {
+                Material::Flat(color) => {
+                    let light = &fr.light;
+                    let faces = mesh.face_normals();
+                    for (f, &tri) in mesh.triangles().iter().enumerate() {
+                        let lit = |_: &[ScreenVertex<0>]| {
+                            let n = faces.get(f).copied().unwrap_or_default();
+                            Flat(color.scale(super::quantise_intensity(light.intensity(n))))
+                        };
+                        t.draw(target, depth, stats, tri, |_, _| [], |_| (), lit);
+                    }
+                }
+                #[cfg(feature = "gouraud")]
+                Material::Gouraud(color) => {
+                    let ramp = color.ramp();
+                    let shader = Gouraud::new(&ramp);
+                    let light = &fr.light;
+                    let normals = mesh.vertex_normals();
+                    let attr = |k: u16| Intensity(light.intensity(normals[k as usize]));
+                    for &tri in mesh.triangles() {
+                        t.draw(
+                            target,
+                            depth,
+                            stats,
+                            tri,
+                            |_, v| v.screen.v,
+                            attr,
+                            |_| shader,
+                        );
+                    }
+                }
+                #[cfg(feature = "texture")]
+                Material::Texture { texture, mode } => {
+                    let w = texture.width();
+                    let Ok(tex) = Texture::new(texture.texels(), w, texture.height(), w as usize)
+                    else {
+                        continue;
+                    };
+                    let Some(affine) = AffineTexture::<_, RepeatPow2>::new(tex) else {
+                        continue;
+                    };
+                    let uvs = mesh.uvs();
+                    let uv = |k: u16| uvs.get(k as usize).copied().unwrap_or([0; 2]);
+                    let texel = |t: i16| (t as i32) << 16;
+                    let affine_in = |k: u16, _: &MeshVertex<1>| uv(k).map(texel);
+                    let affine_attr = |k: u16| {
+                        let [u, v] = uv(k);
+                        Uv {
+                            u: S::from_i32(u as i32),
+                            v: S::from_i32(v as i32),
+                        }
+                    };
+                    #[cfg(feature = "perspective")]
+                    if mode != super::TextureMode::Affine {
+                        let Some(exact) = PerspectiveTexture::<_, RepeatPow2, 1>::new(tex) else {
+                            continue;
+                        };
+                        let persp_in = |k: u16, v: &MeshVertex<1>| {
+                            let q = v.screen.v[0];
+                            let [a, b] = uv(k).map(|t| {
+                                let p = (t as i64 * q as i64)
+                                    >> (crate::raster::PERSPECTIVE_Q_BITS - 16);
+                                p.clamp(-(1 << 29), (1 << 29) - 1) as i32
+                            });
+                            [a, b, q]
+                        };
+                        let persp_attr = |k: u16| {
+                            let [u, v] = uv(k);
+                            UvPerspective {
+                                u: S::from_i32(u as i32),
+                                v: S::from_i32(v as i32),
+                            }
+                        };
+                        for &tri in mesh.triangles() {
+                            if mode == super::TextureMode::Auto
+                                && nearly_fronto_parallel(verts, tri)
+                            {
+                                t.draw(target, depth, stats, tri, affine_in, affine_attr, |_| {
+                                    affine
+                                });
+                            } else {
+                                t.draw(target, depth, stats, tri, persp_in, persp_attr, |_| exact);
+                            }
+                        }
+                        continue;
+                    }
+                    let _ = mode; // Affine (others are refused without `perspective`)
+                    for &tri in mesh.triangles() {
+                        t.draw(target, depth, stats, tri, affine_in, affine_attr, |_| {
+                            affine
+                        });
+                    }
+                }
+                // Refused by `PreparedObject::new` (feature left out).
+                #[allow(unreachable_patterns)]
+                _ => {}
+            }
+        }
+        stats
+    }
+}
+
+/// [`TextureMode::Auto`](super::TextureMode::Auto)'s rule: affine when all
+/// three vertices are in the volume and their depth ratio
+/// `z_max/z_min = q_max/q_min` is at most
+/// [`AUTO_AFFINE_MAX_DEPTH_RATIO`](super::AUTO_AFFINE_MAX_DEPTH_RATIO)
+/// (1.1, exactly: `10·q_max ≤ 11·q_min`).
+#[cfg(feature = "perspective")]
+fn nearly_fronto_parallel(verts: &[MeshVertex<1>], tri: [u16; 3]) -> bool {
+    let mut lo = i64::MAX;
+    let mut hi = 0i64;
+    for k in tri {
+        let Some(v) = verts.get(k as usize) else {
+            return false;
+        };
+        if v.outcode != 0 {
+            return false;
+        }
+        let q = v.screen.v[0] as i64;
+        lo = lo.min(q);
+        hi = hi.max(q);
+    }
+    10 * hi <= 11 * lo
+}

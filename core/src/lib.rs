@@ -78,10 +78,10 @@
 //!
 //! | firmware (features) | .text | of which written in sightline | difference |
 //! |---|---:|---:|---:|
-//! | cube: flat + `depth` | 31 544 | 15 452 | base |
-//! | bunny: + `gouraud` | 50 520 | 25 446 | +18 976 |
-//! | corridor: + `texture`, `perspective` (no `gouraud`) | 71 924 | 34 062 | +40 380 |
-//! | all five scenes: `full` (adds `raycast`, `sphere`, `clip-far`) | 112 428 | 63 546 | +80 884 |
+//! | cube: flat + `depth` | 41 040 | 20 696 | base |
+//! | bunny: + `gouraud` | 61 544 | 32 368 | +20 504 |
+//! | corridor: + `texture`, `perspective` (no `gouraud`) | 82 676 | 40 760 | +41 636 |
+//! | all five scenes: `full` (adds `raycast`, `sphere`, `clip-far`) | 138 056 | 79 444 | +97 016 |
 //!
 //! The differences include each scene's own use of the stage (e.g. vertex
 //! normals for the bunny); `depth`, `clip-far`, `grid` and `column` were not

@@ -14,9 +14,13 @@
 //! - otherwise the triangle goes through [`Pipeline::project_polygon`].
 //!
 //! Clipping a polygon whose vertices are all inside returns it unchanged,
-//! and projection is per vertex, so the result is bit-identical to
-//! [`Pipeline::project_polygon`] in every case: the same pixels, and the
-//! same watertightness along edges shared with clipped neighbours.
+//! and projection is per vertex, so the result equals
+//! [`Pipeline::project_polygon`]'s. The one exception: the side planes are
+//! tested on the projected vertex against the guard-band rectangle, the
+//! clipper tests them in view space, and the two can disagree for a vertex
+//! within rounding of a side plane, 16 pixels off screen. Then one path
+//! draws the triangle whole and the other cuts a sliver off screen: the
+//! vertices differ, the pixels do not (tested).
 
 use super::{Cull, DrawError, Pipeline, ScreenPolygon, Varyings, Vertex};
 use crate::raster::ScreenVertex;
@@ -83,8 +87,18 @@ impl<S: Scalar> Pipeline<S> {
         if !(v.pos.is_finite() && v.attr.is_finite()) {
             return MeshVertex::default();
         }
+        // The depth planes (near, and far with `clip-far`) are tested in
+        // view space; the four side planes, for a vertex in front of them,
+        // on its projection against the guard-band rectangle: one compare
+        // each instead of a dot product. The two tests can disagree only
+        // for a vertex within rounding of a side plane, 16 pixels off
+        // screen: it is then either drawn as it is (the scan converter
+        // scissors it) or sent to the clipper, which keeps it whole; the
+        // visible pixels are the same.
+        let planes = self.frustum.planes();
+        let depth_planes = planes.len().saturating_sub(4);
         let mut outcode = 0u8;
-        for (i, plane) in self.frustum.planes().iter().enumerate() {
+        for (i, plane) in planes.iter().take(depth_planes).enumerate() {
             if plane.distance(v.pos) < S::ZERO {
                 outcode |= 1 << i;
             }
@@ -95,10 +109,17 @@ impl<S: Scalar> Pipeline<S> {
                 ..MeshVertex::default()
             };
         }
-        match self.project(v) {
-            Some(screen) => MeshVertex { outcode, screen },
-            None => MeshVertex::default(),
+        let Some(screen) = self.project(v) else {
+            return MeshVertex::default();
+        };
+        let [x0, x1, y0, y1] = self.guard_rect;
+        let side = [screen.x < x0, screen.x > x1, screen.y < y0, screen.y > y1];
+        for (k, out) in side.into_iter().enumerate() {
+            if out {
+                outcode |= 1 << (depth_planes + k);
+            }
         }
+        MeshVertex { outcode, screen }
     }
 
     /// Projects every vertex of `verts` into `out` (pairwise; extra
@@ -116,7 +137,8 @@ impl<S: Scalar> Pipeline<S> {
     /// Triangle `tri` (indices into `verts` and `projected`, which
     /// [`Self::project_vertices`] filled from `verts`) ready to fill, with
     /// face culling applied: `Ok(None)` if culled or entirely outside.
-    /// Bit-identical to [`Self::project_polygon`] of the three vertices.
+    /// The same pixels as [`Self::project_polygon`] of the three vertices
+    /// (see the [`mesh`](self) module).
     ///
     /// # Errors
     /// As [`Self::project_polygon`]; an index out of range is reported as

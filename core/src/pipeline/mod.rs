@@ -164,6 +164,9 @@ pub struct Pipeline<S> {
     depth_a: S,
     depth_scale: S,
     cull: Cull,
+    /// The side planes as a 28.4 screen rectangle `[x0, x1] × [y0, y1]`
+    /// (viewport plus guard band), for outcodes of projected vertices.
+    guard_rect: [i32; 4],
 }
 
 impl<S: Scalar> Pipeline<S> {
@@ -268,12 +271,23 @@ impl<S: Scalar> Pipeline<S> {
             let _ = far_p;
             Frustum::from_planes(&[near_p, sides[0], sides[1], sides[2], sides[3]])
         };
+        // Saturating: a guard band beyond the 28.4 range only widens the
+        // rectangle (the side planes stay the ones the clipper uses).
+        let sub = |v: S| v.to_subpixel(SUBPIXEL_BITS).unwrap_or(i32::MAX);
+        let g = sub(guard);
+        let guard_rect = [
+            -g,
+            sub(w).saturating_add(g),
+            -g,
+            sub(h).saturating_add(g),
+        ];
         Ok(Self {
             projection,
             frustum,
             depth_a,
             depth_scale,
             cull: Cull::None,
+            guard_rect,
         })
     }
 

@@ -97,3 +97,77 @@ impl EdgeStepper {
         }
     }
 }
+
+/// The exact `i32` twin of [`EdgeStepper`], for triangles whose 28.4
+/// coordinates all lie within ±[`SMALL_COORD_LIMIT`].
+///
+/// Bound: with `|x|, |y| ≤ 2^14`, `0 < dy ≤ 2^15`, `|dx| ≤ 2^15` and the
+/// row's centre within the edge's extent (`0 ≤ y_c − y₀ ≤ dy + 8`),
+/// `|N| ≤ (2^14 + 8)·2^15 + (2^15 + 8)·2^15 < 1.62·10^9 < 2^31`, and
+/// `D = 16·dy ≤ 2^19`: every intermediate fits in `i32`, so the set-up is
+/// two 32-bit divisions (no 64-bit library calls on ARMv6-M) and the walk
+/// keeps its state in four 32-bit registers. The values are identical to
+/// [`EdgeStepper`]'s: both compute the same exact quotients.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct EdgeStepper32 {
+    pub(super) x: i32,
+    r: i32,
+    d: i32,
+    q_step: i32,
+    r_step: i32,
+}
+
+/// Largest `|x|`, `|y|` (28.4) for [`EdgeStepper32`]: 2^14, i.e. ±1024
+/// pixels, which covers any viewport up to 992 pixels plus the 16-pixel
+/// guard band.
+pub const SMALL_COORD_LIMIT: i32 = 1 << 14;
+
+/// `ceil(n / d)` and its remainder in `[0, d)`, for `d > 0`, in `i32`.
+/// (A 16-step shift-and-subtract division was tried here: on ARMv6-M it
+/// cost W1 10 % more than the library's 32-bit division.)
+#[inline]
+fn ceil_div32(n: i32, d: i32) -> (i32, i32) {
+    let (q, r) = (n / d, n % d);
+    if r > 0 { (q + 1, d - r) } else { (q, -r) }
+}
+
+impl EdgeStepper32 {
+    /// As [`EdgeStepper::new`]; every coordinate within
+    /// ±[`SMALL_COORD_LIMIT`] and `row`'s centre within the edge's rows.
+    pub(super) fn new(x0: i32, y0: i32, x1: i32, y1: i32, row: i32) -> Self {
+        let dy = y1 - y0;
+        if dy <= 0 {
+            return Self {
+                x: first_center(x0),
+                r: 0,
+                d: 1,
+                q_step: 0,
+                r_step: 0,
+            };
+        }
+        let dx = x1 - x0;
+        let yc = row * 16 + 8;
+        let n = (x0 - 8) * dy + (yc - y0) * dx;
+        let d = 16 * dy;
+        let (x, r) = ceil_div32(n, d);
+        let (q_step, r_step) = ceil_div32(16 * dx, d);
+        Self {
+            x,
+            r,
+            d,
+            q_step,
+            r_step,
+        }
+    }
+
+    /// As [`EdgeStepper::step`].
+    #[inline]
+    pub(super) fn step(&mut self) {
+        self.x += self.q_step;
+        self.r += self.r_step;
+        if self.r >= self.d {
+            self.x -= 1;
+            self.r -= self.d;
+        }
+    }
+}

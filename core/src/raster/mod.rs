@@ -71,7 +71,7 @@ pub use texture::{AffineTexture, Clamp, LitAffineTexture, Repeat, RepeatPow2, Te
 pub const PERSPECTIVE_Q_BITS: u32 = 24;
 
 use crate::target::Target;
-use edge::{EdgeStepper, first_center};
+use edge::{EdgeStepper, EdgeStepper32, first_center};
 use gradient::{Basis, Gradient};
 
 /// Fractional bits of screen coordinates (28.4 fixed point).
@@ -292,17 +292,18 @@ where
     // [left, right) whatever the winding; for garbage it still yields one
     // bounded span. Evaluates to whether anything was inside the clip. A
     // macro rather than a closure so that both walks get it inlined.
+    // Columns are within ±2^24 + 1 (coordinates within ±2^28 in 28.4), so
+    // the edges' columns fit in i32.
     macro_rules! span {
         ($y:expr, $xa:expr, $xb:expr) => {{
-            let (y, xa, xb): (i32, i64, i64) = ($y, $xa, $xb);
+            let (y, xa, xb): (i32, i32, i32) = ($y, $xa, $xb);
             let inside = 'span: {
-                let x0 = xa.min(xb).max(clip.x0 as i64);
-                let x1 = xa.max(xb).min(clip.x1 as i64);
+                let x0 = xa.min(xb).max(clip.x0);
+                let x1 = xa.max(xb).min(clip.x1);
                 if x0 >= x1 {
                     break 'span false;
                 }
-                // In i32 range: clamped to the clip rectangle.
-                let (x, len) = (x0 as i32, (x1 - x0) as u32);
+                let (x, len) = (x0, (x1 - x0) as u32);
                 let (z, dz) = if Z::ENABLED {
                     zgrad.span(x, y, len, 0, zmax)
                 } else {
@@ -371,23 +372,30 @@ where
         if m.y < t.y {
             core::mem::swap(&mut t, &mut m);
         }
-        let mut long = EdgeStepper::new(t.x, t.y, b.x, b.y, row0);
         let split = first_center(m.y).clamp(row0, row1);
-        if row0 < split {
-            let mut short = EdgeStepper::new(t.x, t.y, m.x, m.y, row0);
-            for y in row0..split {
-                drawn |= span!(y, long.x, short.x);
-                long.step();
-                short.step();
-            }
+        // One walk for both halves and both edge widths: 32-bit edges when
+        // every coordinate allows it (see `EdgeStepper32`), 64-bit ones
+        // otherwise; both give the same columns.
+        macro_rules! walk {
+            ($E:ident, $x:expr) => {{
+                let mut long = $E::new(t.x, t.y, b.x, b.y, row0);
+                for (lo, hi, p, q) in [(row0, split, t, m), (split, row1, m, b)] {
+                    if lo < hi {
+                        let mut short = $E::new(p.x, p.y, q.x, q.y, lo);
+                        for y in lo..hi {
+                            drawn |= span!(y, $x(long.x), $x(short.x));
+                            long.step();
+                            short.step();
+                        }
+                    }
+                }
+            }};
         }
-        if split < row1 {
-            let mut short = EdgeStepper::new(m.x, m.y, b.x, b.y, split);
-            for y in split..row1 {
-                drawn |= span!(y, long.x, short.x);
-                long.step();
-                short.step();
-            }
+        let lim = edge::SMALL_COORD_LIMIT;
+        if [t, m, b].iter().all(|v| v.x.abs() <= lim && v.y.abs() <= lim) {
+            walk!(EdgeStepper32, |x: i32| x);
+        } else {
+            walk!(EdgeStepper, |x: i64| x as i32);
         }
     } else {
         let mut a = Chain::new(verts, top, bottom, true);
@@ -396,7 +404,7 @@ where
             if !(a.seek(y) && b.seek(y)) {
                 break;
             }
-            let (xa, xb) = (a.edge.x, b.edge.x);
+            let (xa, xb) = (a.edge.x as i32, b.edge.x as i32);
             a.edge.step();
             b.edge.step();
             drawn |= span!(y, xa, xb);

@@ -186,11 +186,13 @@ impl<S: Scalar> Pipeline<S> {
                 .iter()
                 .all(|v| v.x.unsigned_abs() <= lim && v.y.unsigned_abs() <= lim),
         ) {
-            // A triangle within ±2^28: edge vectors below 2^29, products
-            // below 2^58, so i64 is exact (and equals the shoelace sum).
-            let e1 = (b.x as i64 - a.x as i64, b.y as i64 - a.y as i64);
-            let e2 = (c.x as i64 - a.x as i64, c.y as i64 - a.y as i64);
-            e1.0 * e2.1 - e1.1 * e2.0 < 0
+            // A triangle within ±2^28: edge vectors below 2^29 (i32),
+            // products below 2^58, so the i64 difference is exact (and
+            // equals the shoelace sum); 32×32→64 multiplies.
+            let mul = crate::scalar::widening_mul;
+            let (e1x, e1y) = (b.x - a.x, b.y - a.y);
+            let (e2x, e2y) = (c.x - a.x, c.y - a.y);
+            mul(e1x, e2y) - mul(e1y, e2x) < 0
         } else {
             shoelace_front(screen, last)
         };

@@ -275,12 +275,7 @@ impl<S: Scalar> Pipeline<S> {
         // rectangle (the side planes stay the ones the clipper uses).
         let sub = |v: S| v.to_subpixel(SUBPIXEL_BITS).unwrap_or(i32::MAX);
         let g = sub(guard);
-        let guard_rect = [
-            -g,
-            sub(w).saturating_add(g),
-            -g,
-            sub(h).saturating_add(g),
-        ];
+        let guard_rect = [-g, sub(w).saturating_add(g), -g, sub(h).saturating_add(g)];
         Ok(Self {
             projection,
             frustum,

@@ -136,7 +136,17 @@ impl Gradient {
 /// `(p·q − r·s) << EXTRA` if it fits in i64.
 #[inline]
 fn cross_shifted(p: i64, q: i64, r: i64, s: i64) -> Option<i64> {
-    let v = p.checked_mul(q)?.checked_sub(r.checked_mul(s)?)?;
+    let small = |v: i64| i32::try_from(v).ok();
+    let v = match (small(p), small(q), small(r), small(s)) {
+        // Each product below 2^62 in magnitude, their difference below
+        // 2^63: exact, and a 32×32→64 multiply (no 64×64 library call on
+        // ARMv6-M). Depth and varying differences and edge vectors always
+        // take this path.
+        (Some(p), Some(q), Some(r), Some(s)) => {
+            crate::scalar::widening_mul(p, q) - crate::scalar::widening_mul(r, s)
+        }
+        _ => p.checked_mul(q)?.checked_sub(r.checked_mul(s)?)?,
+    };
     // Keep one bit of headroom for the rounding offset in `div_round`.
     (v.unsigned_abs() < 1 << (62 - EXTRA)).then_some(v << EXTRA)
 }

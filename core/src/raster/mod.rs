@@ -252,9 +252,10 @@ where
     let mut bv = [v0; 3];
     for w in verts[1..].windows(2) {
         let (a, b) = (w[0], w[1]);
-        let e1 = (a.x as i64 - v0.x as i64, a.y as i64 - v0.y as i64);
-        let e2 = (b.x as i64 - v0.x as i64, b.y as i64 - v0.y as i64);
-        let area2 = e1.0 * e2.1 - e1.1 * e2.0;
+        // Edge components below 2^29: each product is a 32×32→64 multiply.
+        let (e1x, e1y) = (a.x - v0.x, a.y - v0.y);
+        let (e2x, e2y) = (b.x - v0.x, b.y - v0.y);
+        let area2 = crate::scalar::widening_mul(e1x, e2y) - crate::scalar::widening_mul(e1y, e2x);
         if area2.unsigned_abs() > basis.area2.unsigned_abs() {
             basis = Basis {
                 p: [(v0.x, v0.y), (a.x, a.y), (b.x, b.y)],
@@ -392,7 +393,10 @@ where
             }};
         }
         let lim = edge::SMALL_COORD_LIMIT;
-        if [t, m, b].iter().all(|v| v.x.abs() <= lim && v.y.abs() <= lim) {
+        if [t, m, b]
+            .iter()
+            .all(|v| v.x.abs() <= lim && v.y.abs() <= lim)
+        {
             walk!(EdgeStepper32, |x: i32| x);
         } else {
             walk!(EdgeStepper, |x: i64| x as i32);

@@ -25,6 +25,7 @@
 //!   [`Scalar::is_finite`].
 
 mod fixed_point;
+pub(crate) use fixed_point::widening_mul;
 mod float;
 mod float_math;
 

@@ -30,6 +30,9 @@ pub(super) struct Gradient {
     /// `|base| < 2^61` (values below 2^52 in 24.8 or 16.16), so the plane
     /// needs no saturation.
     small: bool,
+    /// `|gx|, |gy| < 2^31` (and so `|step| < 2^27`): on the `small` path
+    /// every product is then a 32×32→64 multiply.
+    narrow: bool,
 }
 
 /// The three vertices the planes are fitted through: positions (28.4) and
@@ -85,6 +88,7 @@ impl Gradient {
             small: gx.unsigned_abs() < lim as u64
                 && gy.unsigned_abs() < lim as u64
                 && a[0].unsigned_abs() < 1 << 52,
+            narrow: gx.unsigned_abs() < 1 << 31 && gy.unsigned_abs() < 1 << 31,
         }
     }
 
@@ -110,9 +114,19 @@ impl Gradient {
             if self.small && x.abs() < pixel_range && y.abs() < pixel_range && len < 1 << 16 {
                 // See `small`; the span is clipped to the target, so
                 // n < 2^16 and |step·n| < 2^44.
-                let v = self.base + self.gx * px + self.gy * py;
+                let (v, run) = if self.narrow {
+                    // The same products, as 32×32→64 multiplies: |px|,
+                    // |py| < 2^29 here, |step| < 2^27, n < 2^16.
+                    let mul = crate::scalar::widening_mul;
+                    (
+                        self.base + mul(self.gx as i32, px as i32) + mul(self.gy as i32, py as i32),
+                        mul(step as i32, n as i32),
+                    )
+                } else {
+                    (self.base + self.gx * px + self.gy * py, step * n)
+                };
                 let start = (v + (1 << (EXTRA - 1))) >> EXTRA;
-                (start, start + step * n)
+                (start, start + run)
             } else {
                 let v = self
                     .base

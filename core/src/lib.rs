@@ -78,10 +78,10 @@
 //!
 //! | firmware (features) | .text | of which written in sightline | difference |
 //! |---|---:|---:|---:|
-//! | cube: flat + `depth` | 41 040 | 20 696 | base |
-//! | bunny: + `gouraud` | 61 544 | 32 368 | +20 504 |
-//! | corridor: + `texture`, `perspective` (no `gouraud`) | 82 676 | 40 760 | +41 636 |
-//! | all five scenes: `full` (adds `raycast`, `sphere`, `clip-far`) | 138 056 | 79 444 | +97 016 |
+//! | cube: flat + `depth` | 41 392 | 21 226 | base |
+//! | bunny: + `gouraud` | 61 888 | 33 186 | +20 496 |
+//! | corridor: + `texture`, `perspective` (no `gouraud`) | 83 824 | 42 522 | +42 432 |
+//! | all five scenes: `full` (adds `raycast`, `sphere`, `clip-far`) | 140 308 | 82 156 | +98 916 |
 //!
 //! The differences include each scene's own use of the stage (e.g. vertex
 //! normals for the bunny); `depth`, `clip-far`, `grid` and `column` were not

@@ -163,6 +163,7 @@ pub struct Pipeline<S> {
     /// or `(depth − a)·scale` (parallel, depth = z).
     depth_a: S,
     depth_scale: S,
+    near: S,
     cull: Cull,
     /// The side planes as a 28.4 screen rectangle `[x0, x1] × [y0, y1]`
     /// (viewport plus guard band), for outcodes of projected vertices.
@@ -281,6 +282,7 @@ impl<S: Scalar> Pipeline<S> {
             frustum,
             depth_a,
             depth_scale,
+            near,
             cull: Cull::None,
             guard_rect,
         })
@@ -317,11 +319,10 @@ impl<S: Scalar> Pipeline<S> {
         let x = p.x.to_subpixel(SUBPIXEL_BITS)?;
         let y = p.y.to_subpixel(SUBPIXEL_BITS)?;
         let (frac, q) = match self.projection.kind {
-            // depth_a = 1/near, so near/z = depth / depth_a.
-            ProjectionKind::Perspective { .. } => (
-                (self.depth_a - depth) * self.depth_scale,
-                depth / self.depth_a,
-            ),
+            // q = near/z = near·(1/z): a multiply, not a division.
+            ProjectionKind::Perspective { .. } => {
+                ((self.depth_a - depth) * self.depth_scale, depth * self.near)
+            }
             ProjectionKind::Parallel { .. } => ((depth - self.depth_a) * self.depth_scale, S::ONE),
         };
         // Clipping keeps the fraction in [0, 1] up to rounding.

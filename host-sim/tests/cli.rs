@@ -619,6 +619,45 @@ fn huge_textures_are_refused_from_their_header() {
     assert!(e.contains("cannot read PNG"), "{e}");
 }
 
+/// Renders scene `text` with `--method both` and returns the error and
+/// the files in the directory afterwards.
+fn both_error(tag: &str, text: &str) -> (String, Vec<String>) {
+    let d = temp_dir(tag);
+    let p = d.join("scene.ron");
+    std::fs::write(&p, text).unwrap();
+    let out = d.join("o.png");
+    let e = run_err(&[
+        "render",
+        p.to_str().unwrap(),
+        "--method",
+        "both",
+        "--size",
+        "8x8",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let mut files: Vec<String> = std::fs::read_dir(&d)
+        .unwrap()
+        .map(|f| f.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    files.sort();
+    (e, files)
+}
+
+#[test]
+fn method_both_writes_nothing_when_a_path_fails() {
+    let cube = "(mesh: \"builtin:cube\", material: Flat((1, 2, 3)))";
+    let parallel = format!("{HEAD}    objects: [{cube}],\n)\n")
+        .replace("Perspective(fov_x_degrees: 60.0)", "Parallel(width: 4.0)");
+    let (e, files) = both_error("both-parallel", &parallel);
+    assert!(e.contains("(ray)") && e.contains("perspective"), "{e}");
+    assert_eq!(files, ["scene.ron"]);
+    let many = vec![cube; 33].join(", ");
+    let (e, files) = both_error("both-many", &format!("{HEAD}    objects: [{many}],\n)\n"));
+    assert!(e.contains("more than 32 objects"), "{e}");
+    assert_eq!(files, ["scene.ron"]);
+}
+
 #[test]
 fn a_byte_order_mark_is_skipped() {
     let d = temp_dir("bom");
@@ -637,6 +676,50 @@ fn a_byte_order_mark_is_skipped() {
         out.to_str().unwrap(),
     ]);
     assert!(out.is_file());
+}
+
+#[test]
+fn help_subcommand_takes_help() {
+    for args in [&["help", "--help"][..], &["help"], &["help", "render"]] {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_sightline-sim"))
+            .args(args)
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{args:?}: {out:?}");
+        let stdout = String::from_utf8(out.stdout).unwrap();
+        assert!(
+            stdout.contains("Usage: sightline-sim"),
+            "{args:?}: {stdout}"
+        );
+        if args.len() == 2 {
+            assert!(
+                stdout.contains(&format!(
+                    "sightline-sim {}",
+                    args[1].trim_start_matches('-')
+                )) || args[1] == "--help",
+                "{stdout}"
+            );
+        }
+    }
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_sightline-sim"))
+        .args(["help", "render"])
+        .output()
+        .unwrap();
+    assert!(String::from_utf8(out.stdout).unwrap().contains("--method"));
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_sightline-sim"))
+        .args(["help", "frobnicate"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2), "{out:?}");
+}
+
+#[test]
+fn unknown_scene_lists_every_scene_the_cli_accepts() {
+    let e = run_err(&["render", "no-such-scene"]);
+    for s in builtin::ALL {
+        assert!(e.contains(s.name), "{e}");
+    }
+    assert!(e.contains("maze"), "{e}");
 }
 
 #[test]

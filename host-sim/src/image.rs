@@ -87,11 +87,28 @@ pub struct Rgb8Image {
 /// # Errors
 /// I/O or decoder errors, as text naming the file.
 pub fn read_png_rgb8(path: &Path) -> Result<Rgb8Image, String> {
+    read_png_rgb8_limited(path, u32::MAX)
+}
+
+/// As [`read_png_rgb8`], but refuses a PNG wider or taller than
+/// `max_side` pixels after reading only its header (before any pixel data
+/// is decoded or memory for it is allocated).
+///
+/// # Errors
+/// As [`read_png_rgb8`]; a too large image names the file and its size.
+pub fn read_png_rgb8_limited(path: &Path, max_side: u32) -> Result<Rgb8Image, String> {
     let err = |e: &dyn std::fmt::Display| format!("{}: cannot read PNG: {e}", path.display());
     let file = std::fs::File::open(path).map_err(|e| err(&e))?;
     let mut dec = png::Decoder::new(std::io::BufReader::new(file));
     dec.set_transformations(png::Transformations::normalize_to_color8());
     let mut reader = dec.read_info().map_err(|e| err(&e))?;
+    let (w, h) = (reader.info().width, reader.info().height);
+    if w > max_side || h > max_side {
+        return Err(format!(
+            "{} is {w}x{h} pixels: expected at most {max_side}x{max_side}",
+            path.display()
+        ));
+    }
     let size = reader
         .output_buffer_size()
         .ok_or_else(|| err(&"image too large"))?;

@@ -12,7 +12,7 @@ pub mod scene_file;
 
 use clap::{Parser, Subcommand};
 use image::{Image, agreement, diff_rgb8, line, write_rgb8_png};
-use render::{Method, ScalarKind};
+use render::{Method, Progress, ScalarKind};
 use sightline::scene::{self, Scene};
 use std::ffi::OsString;
 use std::io::{IsTerminal, Write};
@@ -27,7 +27,7 @@ pub const DEFAULT_SIZE: (u16, u16) = (320, 240);
 /// Without a subcommand, renders the default built-in scene (the bunny)
 /// with the raster path to a PNG in the current directory.
 #[derive(Debug, Parser)]
-#[command(name = "sightline-sim", version)]
+#[command(name = "sightline-sim", version, disable_help_subcommand = true)]
 pub struct Cli {
     /// What to do (default: render the default scene).
     #[command(subcommand)]
@@ -83,6 +83,11 @@ pub enum Command {
         #[arg(long)]
         tiny: bool,
     },
+    /// Print this message or the help of the given subcommand.
+    Help {
+        /// The subcommand whose help to print.
+        command: Vec<String>,
+    },
 }
 
 /// Parses `WxH`.
@@ -117,7 +122,8 @@ impl SceneSource {
                 .map(|l| Self::File(Box::new(l)))
                 .map_err(|e| e.to_string());
         }
-        let names: Vec<&str> = scene::builtin::ALL.iter().map(|s| s.name).collect();
+        let mut names: Vec<&str> = scene::builtin::ALL.iter().map(|s| s.name).collect();
+        names.push(render::MAZE);
         Err(format!(
             "unknown scene {arg:?}: expected a built-in scene ({}) or a .ron scene file",
             names.join(", ")
@@ -147,7 +153,12 @@ fn render_cmd(
     out_file: Option<PathBuf>,
     out: &mut dyn Write,
 ) -> Result<(), String> {
-    let progress = std::io::stdout().is_terminal();
+    // A bar on a terminal; plain lines on stderr for logs and pipes.
+    let progress = if std::io::stdout().is_terminal() {
+        Progress::Bar
+    } else {
+        Progress::Lines
+    };
     src.with(|scene| {
         let jobs: Vec<(Method, PathBuf)> = match method {
             Method::Both => {
@@ -167,11 +178,18 @@ fn render_cmd(
                 vec![(m, file)]
             }
         };
+        // Render every image before writing any, so that a path that
+        // cannot render this scene (e.g. the ray path and a parallel
+        // projection) leaves no partial result behind.
+        let mut images = Vec::with_capacity(jobs.len());
         for (m, file) in jobs {
-            let img = render::render(scene, m, scalar, w, h, progress)
-                .map_err(|e| format!("scene {}: {e}", scene.name))?;
-            img.write_png(&file)?;
             let what = if m == Method::Raster { "raster" } else { "ray" };
+            let img = render::render_with(scene, m, scalar, w, h, progress)
+                .map_err(|e| format!("scene {} ({what}): {e}", scene.name))?;
+            images.push((img, file, what));
+        }
+        for (img, file, what) in images {
+            img.write_png(&file)?;
             line(
                 out,
                 &format!(
@@ -309,7 +327,8 @@ where
     I: IntoIterator<Item = T>,
     T: Into<OsString> + Clone,
 {
-    let cli = Cli::try_parse_from(args).map_err(RunError::Usage)?;
+    let args: Vec<OsString> = args.into_iter().map(Into::into).collect();
+    let cli = Cli::try_parse_from(&args).map_err(RunError::Usage)?;
     let r = match cli.command {
         None => {
             let scene = scene::builtin::DEFAULT;
@@ -361,6 +380,22 @@ where
             out: file,
         }) => SceneSource::open(&scene).and_then(|src| compare_cmd(&src, scalar, size, file, out)),
         Some(Command::Report { out: dir, tiny }) => report_cmd(&dir, tiny, out),
+        Some(Command::Help { command }) => {
+            // `help X Y` is `X Y --help`: clap prints the help (a `Usage`
+            // "error" that `main` prints to stdout with status 0), or
+            // reports an unknown subcommand.
+            let bin = args
+                .first()
+                .cloned()
+                .unwrap_or_else(|| "sightline-sim".into());
+            let again = std::iter::once(bin)
+                .chain(command.into_iter().map(OsString::from))
+                .chain(["--help".into()]);
+            return match Cli::try_parse_from(again) {
+                Err(e) => Err(RunError::Usage(e)),
+                Ok(_) => Err(RunError::Failed("help: no help to print".into())),
+            };
+        }
     };
     r.map_err(RunError::Failed)
 }

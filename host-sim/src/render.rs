@@ -9,6 +9,9 @@ use sightline::raster::DepthBuffer;
 use sightline::scalar::{I16F16, Scalar};
 use sightline::scene::{Color, PreparedObject, RayScene, Renderer, Scene, SceneError};
 use sightline::target::Framebuffer;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
 
 /// Which path renders.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -65,9 +68,58 @@ pub fn raster<S: Scalar>(scene: &Scene<'_>, width: u16, height: u16) -> Result<I
     Ok(img)
 }
 
+/// How a ray render reports its progress on stderr.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Progress {
+    /// Silent.
+    Off,
+    /// An indicatif bar (for a terminal).
+    Bar,
+    /// Plain lines, `ray: 30% (72/240 rows, 1.4 s)`, at each 10 % of the
+    /// rows once the render has run for [`LINES_AFTER`] (so short renders
+    /// stay quiet): for logs and pipes, where a bar shows nothing.
+    Lines,
+}
+
+/// How long a ray render runs before [`Progress::Lines`] prints.
+pub const LINES_AFTER: Duration = Duration::from_secs(1);
+
+/// Counts finished rows and prints a line at each new tenth of them.
+struct LineReport<'a> {
+    total: usize,
+    done: AtomicUsize,
+    last_tenth: Mutex<usize>,
+    start: Instant,
+    after: Duration,
+    sink: &'a (dyn Fn(&str) + Sync),
+}
+
+impl LineReport<'_> {
+    fn row_done(&self) {
+        let done = self.done.fetch_add(1, Ordering::Relaxed) + 1;
+        let tenth = done * 10 / self.total.max(1);
+        let Ok(mut last) = self.last_tenth.lock() else {
+            return;
+        };
+        if tenth > *last {
+            *last = tenth;
+            let t = self.start.elapsed();
+            if t >= self.after {
+                (self.sink)(&format!(
+                    "ray: {}% ({done}/{} rows, {:.1} s)",
+                    tenth * 10,
+                    self.total,
+                    t.as_secs_f64()
+                ));
+            }
+        }
+    }
+}
+
 /// Renders `scene` with the ray path, rows in parallel with rayon
 /// (`parallel = false`: one thread, rows in order). Both give the same
 /// image bit for bit: every pixel is a pure function of the scene.
+/// `progress`: an indicatif bar on stderr.
 ///
 /// # Errors
 /// The scene's [`SceneError`].
@@ -78,10 +130,52 @@ pub fn ray<S: Scalar + Send + Sync>(
     parallel: bool,
     progress: bool,
 ) -> Result<Image, SceneError> {
+    let p = if progress {
+        Progress::Bar
+    } else {
+        Progress::Off
+    };
+    ray_with::<S>(scene, width, height, parallel, p)
+}
+
+/// [`ray`] with the progress report chosen.
+///
+/// # Errors
+/// The scene's [`SceneError`].
+pub fn ray_with<S: Scalar + Send + Sync>(
+    scene: &Scene<'_>,
+    width: u16,
+    height: u16,
+    parallel: bool,
+    progress: Progress,
+) -> Result<Image, SceneError> {
+    let stderr = |l: &str| eprintln!("{l}");
+    ray_report::<S>(
+        scene,
+        width,
+        height,
+        parallel,
+        progress,
+        LINES_AFTER,
+        &stderr,
+    )
+}
+
+/// [`ray_with`], with [`Progress::Lines`] going to `sink` once `after` has
+/// passed.
+fn ray_report<S: Scalar + Send + Sync>(
+    scene: &Scene<'_>,
+    width: u16,
+    height: u16,
+    parallel: bool,
+    progress: Progress,
+    after: Duration,
+    sink: &(dyn Fn(&str) + Sync),
+) -> Result<Image, SceneError> {
     let view = scene.view::<S>(width, height)?;
     let rs = RayScene::new(scene, &view)?;
     let mut img = Image::new(width, height, scene.background);
-    let bar = if progress {
+    let bar = if progress == Progress::Bar {
         let b = ProgressBar::new(height as u64);
         b.set_style(
             ProgressStyle::with_template("ray {bar:40} {pos}/{len} rows {elapsed}")
@@ -91,6 +185,20 @@ pub fn ray<S: Scalar + Send + Sync>(
     } else {
         ProgressBar::hidden()
     };
+    let lines = (progress == Progress::Lines).then(|| LineReport {
+        total: height as usize,
+        done: AtomicUsize::new(0),
+        last_tenth: Mutex::new(0),
+        start: Instant::now(),
+        after,
+        sink,
+    });
+    let row_done = || {
+        bar.inc(1);
+        if let Some(l) = &lines {
+            l.row_done();
+        }
+    };
     let w = width as usize;
     if parallel {
         img.pixels
@@ -98,12 +206,12 @@ pub fn ray<S: Scalar + Send + Sync>(
             .enumerate()
             .for_each(|(j, row)| {
                 rs.render_row(j as u16, row);
-                bar.inc(1);
+                row_done();
             });
     } else {
         for (j, row) in img.pixels.chunks_mut(w).enumerate() {
             rs.render_row(j as u16, row);
-            bar.inc(1);
+            row_done();
         }
     }
     bar.finish_and_clear();
@@ -111,7 +219,8 @@ pub fn ray<S: Scalar + Send + Sync>(
 }
 
 /// Renders with the chosen scalar and path (`Method::Both` is not a
-/// single image: pass `Raster` or `Ray`).
+/// single image: pass `Raster` or `Ray`); `progress`: a bar for the ray
+/// path.
 ///
 /// # Errors
 /// The scene's [`SceneError`].
@@ -123,9 +232,31 @@ pub fn render(
     height: u16,
     progress: bool,
 ) -> Result<Image, SceneError> {
+    let p = if progress {
+        Progress::Bar
+    } else {
+        Progress::Off
+    };
+    render_with(scene, method, scalar, width, height, p)
+}
+
+/// [`render`] with the ray path's progress report chosen.
+///
+/// # Errors
+/// The scene's [`SceneError`].
+pub fn render_with(
+    scene: &Scene<'_>,
+    method: Method,
+    scalar: ScalarKind,
+    width: u16,
+    height: u16,
+    progress: Progress,
+) -> Result<Image, SceneError> {
     match (method, scalar) {
-        (Method::Ray, ScalarKind::F32) => ray::<f32>(scene, width, height, true, progress),
-        (Method::Ray, ScalarKind::Fixed) => ray::<I16F16>(scene, width, height, true, progress),
+        (Method::Ray, ScalarKind::F32) => ray_with::<f32>(scene, width, height, true, progress),
+        (Method::Ray, ScalarKind::Fixed) => {
+            ray_with::<I16F16>(scene, width, height, true, progress)
+        }
         (_, ScalarKind::F32) => raster::<f32>(scene, width, height),
         (_, ScalarKind::Fixed) => raster::<I16F16>(scene, width, height),
     }
@@ -200,5 +331,35 @@ pub fn render_maze(scalar: ScalarKind, width: u16, height: u16) -> Result<Image,
     match scalar {
         ScalarKind::F32 => maze::<f32>(width, height),
         ScalarKind::Fixed => maze::<I16F16>(width, height),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use sightline::scene::builtin;
+
+    fn lines(progress: Progress, after: Duration) -> Vec<String> {
+        let got = Mutex::new(Vec::new());
+        let sink = |l: &str| got.lock().unwrap().push(l.to_string());
+        ray_report::<f32>(&builtin::CUBE, 16, 20, true, progress, after, &sink).unwrap();
+        got.into_inner().unwrap()
+    }
+
+    #[test]
+    fn progress_lines_report_each_tenth_of_the_rows_once() {
+        let got = lines(Progress::Lines, Duration::ZERO);
+        assert_eq!(got.len(), 10, "{got:?}");
+        for (i, l) in got.iter().enumerate() {
+            assert!(l.starts_with(&format!("ray: {}% (", (i + 1) * 10)), "{l}");
+        }
+        assert!(got[9].contains("(20/20 rows, "), "{got:?}");
+    }
+
+    #[test]
+    fn progress_lines_are_quiet_for_short_renders_and_when_off() {
+        assert!(lines(Progress::Lines, Duration::from_secs(3600)).is_empty());
+        assert!(lines(Progress::Off, Duration::ZERO).is_empty());
+        assert!(lines(Progress::Bar, Duration::ZERO).is_empty());
     }
 }

@@ -1,0 +1,279 @@
+//! The serde types of a scene file.
+//!
+//! Every struct and enum denies unknown fields, so a typo is an error
+//! with its place. The serde names are the names users write (`camera`,
+//! `object`, `mode`, …), so RON's messages never show a Rust type name.
+//! Numbers are checked while they are read (finite; a field of view in
+//! (0°, 180°); positive widths, radii and scales), so RON reports the
+//! line and column of the offending value.
+
+use serde::Deserialize;
+use serde::de::{Deserializer, Error as _};
+
+/// `[r, g, b]` in 0..=255.
+pub type Rgb = [u8; 3];
+
+/// A number that must be finite; RON places the error at the number.
+struct Finite(f32);
+
+impl<'de> Deserialize<'de> for Finite {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let x = f32::deserialize(d)?;
+        if x.is_finite() {
+            Ok(Self(x))
+        } else {
+            Err(D::Error::custom(format!(
+                "expected a finite number, found {x}"
+            )))
+        }
+    }
+}
+
+fn finite<'de, D: Deserializer<'de>>(d: D) -> Result<f32, D::Error> {
+    Finite::deserialize(d).map(|f| f.0)
+}
+
+fn finite3<'de, D: Deserializer<'de>>(d: D) -> Result<[f32; 3], D::Error> {
+    <[Finite; 3]>::deserialize(d).map(|a| a.map(|f| f.0))
+}
+
+fn positive<'de, D: Deserializer<'de>>(d: D, what: &str) -> Result<f32, D::Error> {
+    let x = finite(d)?;
+    if x > 0.0 {
+        Ok(x)
+    } else {
+        Err(D::Error::custom(format!("{what} is {x}: expected > 0")))
+    }
+}
+
+fn positive_width<'de, D: Deserializer<'de>>(d: D) -> Result<f32, D::Error> {
+    positive(d, "width")
+}
+
+fn positive_radius<'de, D: Deserializer<'de>>(d: D) -> Result<f32, D::Error> {
+    positive(d, "radius")
+}
+
+fn positive_scale<'de, D: Deserializer<'de>>(d: D) -> Result<f32, D::Error> {
+    positive(d, "scale")
+}
+
+fn positive_near<'de, D: Deserializer<'de>>(d: D) -> Result<f32, D::Error> {
+    positive(d, "near")
+}
+
+fn positive_far<'de, D: Deserializer<'de>>(d: D) -> Result<f32, D::Error> {
+    positive(d, "far")
+}
+
+fn fov_degrees<'de, D: Deserializer<'de>>(d: D) -> Result<f32, D::Error> {
+    let x = finite(d)?;
+    if x > 0.0 && x < 180.0 {
+        Ok(x)
+    } else {
+        Err(D::Error::custom(format!(
+            "fov_x_degrees is {x}: expected a field of view in degrees, 0 < fov_x_degrees < 180"
+        )))
+    }
+}
+
+/// The camera forms of a scene file.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(rename = "camera", deny_unknown_fields)]
+pub enum CameraDef {
+    /// Position and roll, pitch, yaw (radians).
+    Angles {
+        /// Eye position.
+        #[serde(deserialize_with = "finite3")]
+        position: [f32; 3],
+        /// (roll, pitch, yaw) in radians.
+        #[serde(deserialize_with = "finite3")]
+        angles: [f32; 3],
+    },
+    /// Orthonormal right, down, forward.
+    Orthonormal {
+        /// Eye position.
+        #[serde(deserialize_with = "finite3")]
+        position: [f32; 3],
+        /// Screen right.
+        #[serde(deserialize_with = "finite3")]
+        right: [f32; 3],
+        /// Screen down.
+        #[serde(deserialize_with = "finite3")]
+        down: [f32; 3],
+        /// View direction.
+        #[serde(deserialize_with = "finite3")]
+        forward: [f32; 3],
+    },
+    /// General vectors, solved by Gaussian elimination.
+    Vectors {
+        /// Eye position.
+        #[serde(deserialize_with = "finite3")]
+        position: [f32; 3],
+        /// World vector of view x.
+        #[serde(deserialize_with = "finite3")]
+        u: [f32; 3],
+        /// World vector of view y.
+        #[serde(deserialize_with = "finite3")]
+        v: [f32; 3],
+        /// World vector of view z.
+        #[serde(deserialize_with = "finite3")]
+        w: [f32; 3],
+    },
+    /// Eye, target, up.
+    LookAt {
+        /// Eye.
+        #[serde(deserialize_with = "finite3")]
+        eye: [f32; 3],
+        /// Target.
+        #[serde(deserialize_with = "finite3")]
+        target: [f32; 3],
+        /// Up.
+        #[serde(deserialize_with = "finite3")]
+        up: [f32; 3],
+    },
+}
+
+/// A projection.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(rename = "projection", deny_unknown_fields)]
+pub enum ProjectionDef {
+    /// Horizontal field of view in degrees.
+    Perspective {
+        /// Degrees, in (0, 180).
+        #[serde(deserialize_with = "fov_degrees")]
+        fov_x_degrees: f32,
+    },
+    /// World units across the image (raster only).
+    Parallel {
+        /// World units across, > 0.
+        #[serde(deserialize_with = "positive_width")]
+        width: f32,
+    },
+}
+
+/// Raster texture mapping mode.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(rename = "mode", deny_unknown_fields)]
+pub enum ModeDef {
+    /// Linear in screen space.
+    Affine,
+    /// Perspective-correct.
+    Perspective,
+    /// Chosen per triangle.
+    Auto,
+}
+
+/// A material.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(rename = "material", deny_unknown_fields)]
+pub enum MaterialDef {
+    /// Flat colour.
+    Flat(Rgb),
+    /// Gouraud colour.
+    Gouraud(Rgb),
+    /// A PNG texture (sides powers of two) and a mode.
+    Texture {
+        /// PNG file, relative to the scene file.
+        file: String,
+        /// Mapping mode.
+        #[serde(default = "default_mode")]
+        mode: ModeDef,
+    },
+}
+
+fn default_mode() -> ModeDef {
+    ModeDef::Perspective
+}
+
+/// An object.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(rename = "object", deny_unknown_fields)]
+pub struct ObjectDef {
+    /// OBJ file relative to the scene file, or `builtin:cube`,
+    /// `builtin:floor`, `builtin:bunny`.
+    pub mesh: String,
+    /// Origin in world coordinates.
+    #[serde(default, deserialize_with = "finite3")]
+    pub position: [f32; 3],
+    /// (roll, pitch, yaw) in radians.
+    #[serde(default, deserialize_with = "finite3")]
+    pub angles: [f32; 3],
+    /// Uniform scale applied to the OBJ coordinates, > 0.
+    #[serde(default = "one", deserialize_with = "positive_scale")]
+    pub scale: f32,
+    /// Appearance.
+    pub material: MaterialDef,
+}
+
+fn one() -> f32 {
+    1.0
+}
+
+/// The light.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(rename = "light", deny_unknown_fields)]
+pub struct LightDef {
+    /// Direction towards the light.
+    #[serde(deserialize_with = "finite3")]
+    pub direction: [f32; 3],
+    /// Ambient intensity.
+    #[serde(default, deserialize_with = "finite")]
+    pub ambient: f32,
+    /// Diffuse intensity.
+    #[serde(default = "one", deserialize_with = "finite")]
+    pub diffuse: f32,
+}
+
+/// A sphere.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(rename = "sphere", deny_unknown_fields)]
+pub struct SphereDef {
+    /// Centre.
+    #[serde(deserialize_with = "finite3")]
+    pub centre: [f32; 3],
+    /// Radius, > 0.
+    #[serde(deserialize_with = "positive_radius")]
+    pub radius: f32,
+    /// Colour.
+    pub color: Rgb,
+}
+
+/// A whole scene file.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(rename = "Scene", deny_unknown_fields)]
+pub struct SceneDef {
+    /// Name.
+    pub name: String,
+    /// Description.
+    #[serde(default)]
+    pub description: String,
+    /// Camera.
+    pub camera: CameraDef,
+    /// Projection.
+    pub projection: ProjectionDef,
+    /// Near distance, > 0.
+    #[serde(default = "default_near", deserialize_with = "positive_near")]
+    pub near: f32,
+    /// Far distance, > 0 (and > near).
+    #[serde(default = "default_far", deserialize_with = "positive_far")]
+    pub far: f32,
+    /// Light.
+    pub light: LightDef,
+    /// Background colour.
+    #[serde(default)]
+    pub background: Rgb,
+    /// Objects.
+    #[serde(default)]
+    pub objects: Vec<ObjectDef>,
+    /// Spheres.
+    #[serde(default)]
+    pub spheres: Vec<SphereDef>,
+}
+
+fn default_near() -> f32 {
+    0.1
+}
+fn default_far() -> f32 {
+    100.0
+}

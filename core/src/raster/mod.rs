@@ -39,6 +39,15 @@
 //! - Targets are at most 65535×65535 pixels (`u16` sizes), far inside the
 //!   coordinate range, so any viewport plus a guard band of 16 million
 //!   pixels on each side is exact.
+//! - **32-bit set-up.** A triangle whose vertices all lie within ±2^14
+//!   (28.4, i.e. ±1024 pixels: any viewport up to 992 pixels wide with the
+//!   pipeline's 16-pixel guard band) walks its edges entirely in `i32`: the
+//!   edge numerator is then below 1.62·10^9 < 2^31 (derivation at
+//!   `EdgeStepper32` in `edge`). Larger coordinates take the `i64` walk.
+//!   The choice is made per triangle from its coordinates and both walks
+//!   compute the same exact quotients, so it never changes a pixel.
+//!   Products of two 32-bit values (edge vectors, areas, gradient
+//!   numerators) are 32×32→64 multiplies, never 64×64 ones.
 //!
 //! # Robustness
 //!

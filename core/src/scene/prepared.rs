@@ -269,7 +269,8 @@ fn unit_from_direction<S: Scalar>(d: [i32; 3]) -> Vec3<S> {
 impl MeshData<'_> {
     /// Prepares the mesh into `storage` (at least [`storage_len`] long):
     /// positions `positions[k]·scale` in `S`, then the normals `normals`
-    /// asks for. Face normals come from the exact integer cross product of
+    /// asks for. A mirrored mesh (negative scale) is prepared as open, so
+    /// it is drawn from both sides. Face normals come from the exact integer cross product of
     /// the quantised positions (so small triangles keep their normal in
     /// fixed point); a negative scale flips them. Degenerate triangles get
     /// a zero normal (they are lit by the ambient term only and cover no
@@ -342,7 +343,9 @@ impl MeshData<'_> {
             faces,
             verts,
             self.uvs.unwrap_or(&[]),
-            self.closed,
+            // A negative scale mirrors the mesh and flips its winding on
+            // screen: culling its "back" faces would drop the front ones.
+            self.closed && !flip,
         )
     }
 

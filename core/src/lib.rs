@@ -134,10 +134,10 @@
 //!
 //! | firmware (features) | .text | of which written in sightline | difference |
 //! |---|---:|---:|---:|
-//! | cube: flat + `depth` | 41 392 | 21 226 | base |
-//! | bunny: + `gouraud` | 61 888 | 33 186 | +20 496 |
-//! | corridor: + `texture`, `perspective` (no `gouraud`) | 83 824 | 42 522 | +42 432 |
-//! | all five scenes: `full` (adds `raycast`, `sphere`, `clip-far`) | 140 308 | 82 156 | +98 916 |
+//! | cube: flat + `depth` | 42 076 | 21 882 | base |
+//! | bunny: + `gouraud` | 64 296 | 34 662 | +22 220 |
+//! | corridor: + `texture`, `perspective` (no `gouraud`) | 87 796 | 46 308 | +45 720 |
+//! | all five scenes: `full` (adds `raycast`, `sphere`, `clip-far`) | 145 976 | 86 874 | +103 900 |
 //!
 //! The differences include each scene's own use of the stage (e.g. vertex
 //! normals for the bunny); `depth`, `clip-far`, `grid` and `column` were not

@@ -252,3 +252,15 @@ fn closed_meshes_cull_back_faces_without_a_depth_buffer() {
 fn px_len(w: u16, h: u16) -> usize {
     w as usize * h as usize
 }
+
+#[test]
+fn storage_for_any_fits_each_scene() {
+    let all = Storage::for_any(&[&CUBE, &BUNNY, &CORRIDOR]);
+    for s in [&CUBE, &BUNNY, &CORRIDOR] {
+        let n = s.storage();
+        assert!(n.vec3s <= all.vec3s && n.objects <= all.objects && n.vertices <= all.vertices);
+    }
+    // The bunny has the most of everything but objects (cube and bunny
+    // both have two).
+    assert_eq!(all, BUNNY.storage());
+}

@@ -264,3 +264,23 @@ fn storage_for_any_fits_each_scene() {
     // both have two).
     assert_eq!(all, BUNNY.storage());
 }
+
+#[cfg(feature = "gouraud")]
+#[test]
+fn a_material_changed_after_preparing_draws_without_panicking() {
+    // The objects' fields are public: a flat-prepared cube (no vertex
+    // normals) switched to Gouraud is lit by the ambient term, not a panic.
+    let need = CUBE.storage();
+    let mut vec3s = vec![Vec3::<f32>::ZERO; need.vec3s];
+    let mut objects = vec![PreparedObject::EMPTY; need.objects];
+    let objects = CUBE.prepare(&mut vec3s, &mut objects).unwrap();
+    for o in objects.iter_mut() {
+        o.material = Material::Gouraud(Color::new(31, 63, 31));
+    }
+    let renderer = Renderer::<f32>::new(&CUBE, 32, 24).unwrap();
+    let mut scratch = vec![crate::pipeline::MeshVertex::default(); need.vertices];
+    let frame = renderer.project(objects, &mut scratch).unwrap();
+    let mut px = vec![SENTINEL; 32 * 24];
+    let mut fb = Framebuffer::new(&mut px, 32, 24, 32).unwrap();
+    assert!(frame.draw(&mut fb, &mut NoDepth).drawn > 0);
+}

@@ -252,3 +252,35 @@ fn closed_meshes_cull_back_faces_without_a_depth_buffer() {
 fn px_len(w: u16, h: u16) -> usize {
     w as usize * h as usize
 }
+
+#[test]
+fn storage_for_any_fits_each_scene() {
+    let all = Storage::for_any(&[&CUBE, &BUNNY, &CORRIDOR]);
+    for s in [&CUBE, &BUNNY, &CORRIDOR] {
+        let n = s.storage();
+        assert!(n.vec3s <= all.vec3s && n.objects <= all.objects && n.vertices <= all.vertices);
+    }
+    // The bunny has the most of everything but objects (cube and bunny
+    // both have two).
+    assert_eq!(all, BUNNY.storage());
+}
+
+#[cfg(feature = "gouraud")]
+#[test]
+fn a_material_changed_after_preparing_draws_without_panicking() {
+    // The objects' fields are public: a flat-prepared cube (no vertex
+    // normals) switched to Gouraud is lit by the ambient term, not a panic.
+    let need = CUBE.storage();
+    let mut vec3s = vec![Vec3::<f32>::ZERO; need.vec3s];
+    let mut objects = vec![PreparedObject::EMPTY; need.objects];
+    let objects = CUBE.prepare(&mut vec3s, &mut objects).unwrap();
+    for o in objects.iter_mut() {
+        o.material = Material::Gouraud(Color::new(31, 63, 31));
+    }
+    let renderer = Renderer::<f32>::new(&CUBE, 32, 24).unwrap();
+    let mut scratch = vec![crate::pipeline::MeshVertex::default(); need.vertices];
+    let frame = renderer.project(objects, &mut scratch).unwrap();
+    let mut px = vec![SENTINEL; 32 * 24];
+    let mut fb = Framebuffer::new(&mut px, 32, 24, 32).unwrap();
+    assert!(frame.draw(&mut fb, &mut NoDepth).drawn > 0);
+}

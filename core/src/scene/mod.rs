@@ -40,9 +40,13 @@
 //! `q = ⌊255·I⌋`; the pixel is the base colour scaled by `q/255`
 //! ([`Shade::scale`](crate::raster::Shade::scale)).
 //!
-//! - [`Material::Flat`]: `n` is the triangle's face normal, computed from
-//!   the same quantised vertices with the same code on both paths, so both
-//!   paths give bit-identical colours for a triangle.
+//! - [`Material::Flat`]: `n` is the triangle's face normal, the same exact
+//!   integer direction of the quantised vertices on both paths. The raster
+//!   path normalises it once when the mesh is prepared and lights it in
+//!   object space (the light turned by the pose); the ray path turns and
+//!   normalises it per hit and lights it in world space. The two round
+//!   differently, so a triangle's colour can differ by one intensity step
+//!   where `255·I` falls within rounding of an integer.
 //! - [`Material::Gouraud`]: `I` is evaluated at the vertices (vertex
 //!   normals; for a mesh without them the raster path prepares
 //!   area-weighted ones, the ray path uses the face normal) and interpolated

@@ -8,7 +8,7 @@
 //! [`PreparedMesh::new`] borrows slices that may just as well be `const`
 //! data in flash.
 
-use super::shade::Lighting;
+use super::shade::{Lighting, face_cross, face_direction};
 use super::{Color, Material, MeshData, Scene, SceneError};
 use crate::math::{Affine3, Vec3};
 use crate::pipeline::Cull;
@@ -230,42 +230,6 @@ pub const fn storage_len(mesh: &MeshData<'_>, normals: Normals) -> usize {
     }
 }
 
-/// The integer face direction of triangle `tri` of quantised positions,
-/// scaled so its largest component is ±2^14 (exact cross product in i64:
-/// components below 2^17 each, so below 2^35), or `None` if degenerate.
-fn face_direction(positions: &[[i16; 3]], tri: [u16; 3], flip: bool) -> Option<[i32; 3]> {
-    let p = |k: u16| {
-        let v = positions.get(k as usize).copied().unwrap_or([0; 3]);
-        [v[0] as i64, v[1] as i64, v[2] as i64]
-    };
-    let (a, b, c) = (p(tri[0]), p(tri[1]), p(tri[2]));
-    let e1 = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    let e2 = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-    let n = [
-        e1[1] * e2[2] - e1[2] * e2[1],
-        e1[2] * e2[0] - e1[0] * e2[2],
-        e1[0] * e2[1] - e1[1] * e2[0],
-    ];
-    let m = n.iter().map(|v| v.abs()).max().unwrap_or(0);
-    if m == 0 {
-        return None;
-    }
-    let sign = if flip { -1 } else { 1 };
-    Some(n.map(|v| (sign * (v << 14) / m) as i32))
-}
-
-/// `2^-14 · d` normalised, in `S`.
-fn unit_from_direction<S: Scalar>(d: [i32; 3]) -> Vec3<S> {
-    let unit = S::from_f32(1.0 / 16384.0);
-    Vec3::new(
-        S::from_i32(d[0]) * unit,
-        S::from_i32(d[1]) * unit,
-        S::from_i32(d[2]) * unit,
-    )
-    .try_normalize()
-    .unwrap_or(Vec3::ZERO)
-}
-
 impl MeshData<'_> {
     /// Prepares the mesh into `storage` (at least [`storage_len`] long):
     /// positions `positions[k]·scale` in `S`, then the normals `normals`
@@ -356,7 +320,9 @@ impl MeshData<'_> {
     pub fn face_normals_into<S: Scalar>(&self, out: &mut [Vec3<S>]) {
         let flip = self.scale < 0.0;
         for (o, &tri) in out.iter_mut().zip(self.triangles) {
-            *o = face_direction(self.positions, tri, flip).map_or(Vec3::ZERO, unit_from_direction);
+            *o = face_direction::<S>(self.positions, tri, flip)
+                .and_then(Vec3::try_normalize)
+                .unwrap_or(Vec3::ZERO);
         }
     }
 
@@ -369,20 +335,7 @@ impl MeshData<'_> {
         for v in out.iter_mut() {
             *v = Vec3::ZERO;
         }
-        let cross = |tri: [u16; 3]| -> [i64; 3] {
-            let p = |k: u16| {
-                let v = self.positions.get(k as usize).copied().unwrap_or([0; 3]);
-                [v[0] as i64, v[1] as i64, v[2] as i64]
-            };
-            let (a, b, c) = (p(tri[0]), p(tri[1]), p(tri[2]));
-            let e1 = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-            let e2 = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-            [
-                e1[1] * e2[2] - e1[2] * e2[1],
-                e1[2] * e2[0] - e1[0] * e2[2],
-                e1[0] * e2[1] - e1[1] * e2[0],
-            ]
-        };
+        let cross = |tri: [u16; 3]| face_cross(self.positions, tri);
         let m = self
             .triangles
             .iter()
@@ -533,6 +486,38 @@ pub struct Storage {
     /// Scratch vertices for one frame
     /// ([`Renderer::project`](super::Renderer::project)).
     pub vertices: usize,
+}
+
+impl Storage {
+    /// Field by field, the larger of the two: storage that fits either.
+    #[must_use]
+    pub const fn max(self, other: Self) -> Self {
+        const fn m(a: usize, b: usize) -> usize {
+            if a > b { a } else { b }
+        }
+        Self {
+            vec3s: m(self.vec3s, other.vec3s),
+            objects: m(self.objects, other.objects),
+            vertices: m(self.vertices, other.vertices),
+        }
+    }
+
+    /// Storage that fits any one of `scenes` (prepared one at a time into
+    /// the same buffers), for sizing `static` arrays at compile time.
+    #[must_use]
+    pub const fn for_any(scenes: &[&Scene<'_>]) -> Self {
+        let mut s = Self {
+            vec3s: 0,
+            objects: 0,
+            vertices: 0,
+        };
+        let mut i = 0;
+        while i < scenes.len() {
+            s = s.max(scenes[i].storage());
+            i += 1;
+        }
+        s
+    }
 }
 
 impl Scene<'_> {

@@ -212,7 +212,10 @@ impl<S: Scalar> Renderer<S> {
                 #[cfg(feature = "gouraud")]
                 Material::Gouraud(_) => {
                     for (k, o) in out.iter_mut().enumerate() {
-                        let i = light.intensity(mesh.vertex_normals()[k]);
+                        // `get`: the object's material may have been changed to one
+                        // this mesh has no normals for (they are pub fields).
+                        let n = mesh.vertex_normals().get(k).copied().unwrap_or_default();
+                        let i = light.intensity(n);
                         *o = pipe.project_vertex(&Vertex::new(pos(k), Intensity(i)));
                     }
                 }
@@ -420,7 +423,11 @@ impl<S: Scalar> Frame<'_, '_, S> {
                     let shader = Gouraud::new(&ramp);
                     let light = &fr.light;
                     let normals = mesh.vertex_normals();
-                    let attr = |k: u16| Intensity(light.intensity(normals[k as usize]));
+                    let attr = |k: u16| {
+                        Intensity(
+                            light.intensity(normals.get(k as usize).copied().unwrap_or_default()),
+                        )
+                    };
                     for &tri in mesh.triangles() {
                         t.draw(
                             target,

@@ -106,42 +106,58 @@ pub(crate) fn position<S: Scalar>(mesh: &MeshData<'_>, scale: S, k: u16) -> Vec3
     )
 }
 
-/// 1/16384, the unit of [`face_normal`]'s integer direction.
+/// 1/16384, the unit of [`face_direction`].
 const INV_2_14: f32 = 1.0 / 16384.0;
 
-/// The world-space unit face normal of triangle `tri` under rotation
-/// `rot`. The cross product is taken exactly in integers on the quantised
-/// positions, then scaled so its largest component is ±2^14: the result
-/// does not depend on the scalar type's range (I16F16 would lose small
-/// triangles' normals to underflow otherwise). `None` for a degenerate
-/// triangle.
-pub(crate) fn face_normal<S: Scalar>(
-    mesh: &MeshData<'_>,
-    rot: &Mat3<S>,
-    tri: [u16; 3],
-) -> Option<Vec3<S>> {
+/// The exact cross product `(b − a) × (c − a)` of triangle `tri` of
+/// quantised positions, in i64 (components below 2^17 each, so below
+/// 2^35); a missing index reads as the origin.
+pub(crate) fn face_cross(positions: &[[i16; 3]], tri: [u16; 3]) -> [i64; 3] {
     let p = |k: u16| {
-        let v = mesh.positions.get(k as usize).copied().unwrap_or([0; 3]);
+        let v = positions.get(k as usize).copied().unwrap_or([0; 3]);
         [v[0] as i64, v[1] as i64, v[2] as i64]
     };
     let (a, b, c) = (p(tri[0]), p(tri[1]), p(tri[2]));
     let e1 = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
     let e2 = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-    let n = [
+    [
         e1[1] * e2[2] - e1[2] * e2[1],
         e1[2] * e2[0] - e1[0] * e2[2],
         e1[0] * e2[1] - e1[1] * e2[0],
-    ];
+    ]
+}
+
+/// The face direction of `tri`, [`face_cross`] scaled so its largest
+/// component is ±2^14 and flipped for a mirrored (negative-scale) mesh, in
+/// `S` (units of 2^14, so the result does not depend on the scalar type's
+/// range: I16F16 would lose small triangles' normals to underflow
+/// otherwise). `None` for a degenerate triangle.
+pub(crate) fn face_direction<S: Scalar>(
+    positions: &[[i16; 3]],
+    tri: [u16; 3],
+    flip: bool,
+) -> Option<Vec3<S>> {
+    let n = face_cross(positions, tri);
     let m = n.iter().map(|v| v.abs()).max().unwrap_or(0);
     if m == 0 {
         return None;
     }
-    // A negative scale flips the winding.
-    let sign = if mesh.scale < 0.0 { -1 } else { 1 };
+    let sign = if flip { -1 } else { 1 };
     let unit = S::from_f32(INV_2_14);
     let c = |v: i64| S::from_i32((sign * (v << 14) / m) as i32) * unit;
-    rot.mul_vec3(Vec3::new(c(n[0]), c(n[1]), c(n[2])))
-        .try_normalize()
+    Some(Vec3::new(c(n[0]), c(n[1]), c(n[2])))
+}
+
+/// The world-space unit face normal of triangle `tri` under rotation
+/// `rot` ([`face_direction`], turned, normalised). `None` for a
+/// degenerate triangle.
+pub(crate) fn face_normal<S: Scalar>(
+    mesh: &MeshData<'_>,
+    rot: &Mat3<S>,
+    tri: [u16; 3],
+) -> Option<Vec3<S>> {
+    let d = face_direction::<S>(mesh.positions, tri, mesh.scale < 0.0)?;
+    rot.mul_vec3(d).try_normalize()
 }
 
 /// The world-space unit normal at vertex `k`: the mesh's vertex normal if

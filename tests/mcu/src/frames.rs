@@ -80,28 +80,7 @@ impl Default for Fnv {
 
 /// The largest [`Scene::storage`] of the scenes in [`SCENES`], field by
 /// field: what [`render_scene`] needs for any of them.
-pub const STORAGE: Storage = {
-    let mut s = Storage {
-        vec3s: 0,
-        objects: 0,
-        vertices: 0,
-    };
-    let mut i = 0;
-    while i < builtin::ALL.len() {
-        let n = builtin::ALL[i].storage();
-        if n.vec3s > s.vec3s {
-            s.vec3s = n.vec3s;
-        }
-        if n.objects > s.objects {
-            s.objects = n.objects;
-        }
-        if n.vertices > s.vertices {
-            s.vertices = n.vertices;
-        }
-        i += 1;
-    }
-    s
-};
+pub const STORAGE: Storage = Storage::for_any(&builtin::ALL);
 
 /// Renders built-in scene `name` in scalar `S` at [`WIDTH`]×[`HEIGHT`]:
 /// prepared once into `vec3s` (at least [`STORAGE`]`.vec3s`), projected

@@ -66,28 +66,7 @@ static mut COLOR: [Color; BAND] = [Color::new(0, 0, 0); BAND];
 static mut DEPTH: [u16; BAND] = [0; BAND];
 
 /// The largest storage any scene of [`SCENES`] needs.
-const STORAGE: Storage = {
-    let mut s = Storage {
-        vec3s: 0,
-        objects: 0,
-        vertices: 0,
-    };
-    let mut i = 0;
-    while i < SCENES.len() {
-        let n = SCENES[i].storage();
-        if n.vec3s > s.vec3s {
-            s.vec3s = n.vec3s;
-        }
-        if n.objects > s.objects {
-            s.objects = n.objects;
-        }
-        if n.vertices > s.vertices {
-            s.vertices = n.vertices;
-        }
-        i += 1;
-    }
-    s
-};
+const STORAGE: Storage = Storage::for_any(&SCENES);
 static mut VEC3S: [Vec3<I16F16>; STORAGE.vec3s] = [Vec3::ZERO; STORAGE.vec3s];
 static mut SCRATCH: [MeshVertex<1>; STORAGE.vertices] = [MeshVertex {
     outcode: 0,

@@ -134,10 +134,10 @@
 //!
 //! | firmware (features) | .text | of which written in sightline | difference |
 //! |---|---:|---:|---:|
-//! | cube: flat + `depth` | 42 076 | 21 882 | base |
-//! | bunny: + `gouraud` | 64 296 | 34 662 | +22 220 |
-//! | corridor: + `texture`, `perspective` (no `gouraud`) | 87 796 | 46 308 | +45 720 |
-//! | all five scenes: `full` (adds `raycast`, `sphere`, `clip-far`) | 145 976 | 86 874 | +103 900 |
+//! | cube: flat + `depth` | 41 572 | 21 560 | base |
+//! | bunny: + `gouraud` | 63 884 | 34 370 | +22 312 |
+//! | corridor: + `texture`, `perspective` (no `gouraud`) | 87 404 | 46 050 | +45 832 |
+//! | all five scenes: `full` (adds `raycast`, `sphere`, `clip-far`) | 144 632 | 85 668 | +103 060 |
 //!
 //! The differences include each scene's own use of the stage (e.g. vertex
 //! normals for the bunny); `depth`, `clip-far`, `grid` and `column` were not

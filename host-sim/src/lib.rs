@@ -9,6 +9,7 @@ pub mod image;
 pub mod render;
 pub mod report;
 pub mod scene_file;
+pub mod turntable;
 
 use clap::{Parser, Subcommand};
 use image::{Image, agreement, diff_rgb8, line, write_rgb8_png};
@@ -51,9 +52,18 @@ pub enum Command {
         #[arg(long, default_value = "320x240", value_parser = parse_size)]
         size: (u16, u16),
         /// Output file (default: SCENE-METHOD.png in the current
-        /// directory; with `both`, -raster/-ray is added before .png).
+        /// directory, SCENE-METHOD-turntable.png with --frames; with
+        /// `both`, -raster/-ray is added before .png).
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Write an animated PNG (APNG) of N frames that turns the objects
+        /// once about the world up axis through the scene centre (camera
+        /// and light stay); 1 writes the still PNG.
+        #[arg(long, value_name = "N", value_parser = turntable::parse_frames)]
+        frames: Option<u32>,
+        /// Frames per second of the animated PNG (1..=100; default 25).
+        #[arg(long, requires = "frames", value_parser = turntable::parse_fps)]
+        fps: Option<u16>,
     },
     /// List the built-in scenes.
     List,
@@ -138,7 +148,7 @@ impl SceneSource {
     }
 }
 
-fn with_suffix(path: &Path, suffix: &str) -> PathBuf {
+pub(crate) fn with_suffix(path: &Path, suffix: &str) -> PathBuf {
     let stem = path
         .file_stem()
         .map_or_else(|| "out".into(), |s| s.to_string_lossy().into_owned());
@@ -342,12 +352,22 @@ where
                 out,
             )
         }
+        Some(Command::Render { scene, frames, .. })
+            if scene == render::MAZE && frames.is_some_and(|n| n >= 2) =>
+        {
+            Err(format!(
+                "scene {}: --frames needs a scene with objects to turn; the column caster's grid \
+             map has none",
+                render::MAZE
+            ))
+        }
         Some(Command::Render {
             scene,
             method,
             scalar,
             size,
             out: file,
+            ..
         }) if scene == render::MAZE => maze_cmd(method, scalar, size, file, out),
         Some(Command::Render {
             scene,
@@ -355,6 +375,19 @@ where
             scalar,
             size,
             out: file,
+            frames: Some(n),
+            fps,
+        }) if n >= 2 => SceneSource::open(&scene).and_then(|src| {
+            let fps = fps.unwrap_or(turntable::DEFAULT_FPS);
+            src.with(|s| turntable::turntable_cmd(s, method, scalar, size, n, fps, file, out))
+        }),
+        Some(Command::Render {
+            scene,
+            method,
+            scalar,
+            size,
+            out: file,
+            ..
         }) => SceneSource::open(&scene)
             .and_then(|src| render_cmd(&src, method, scalar, size, file, out)),
         Some(Command::List) => {

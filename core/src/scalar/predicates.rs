@@ -181,14 +181,15 @@ macro_rules! orient2d_float {
     };
 }
 
-// u = 2⁻²⁴ and K = 16·2⁻¹⁵⁰ = 2⁻¹⁴⁶ for f32; 2⁻⁵³ and 2⁻¹⁰⁷¹ for f64.
-orient2d_float!(orient2d_f32, f32, 5.960_464_5e-8_f32, 1.121_039_5e-44_f32);
-orient2d_float!(
-    orient2d_f64,
-    f64,
-    1.110_223_024_625_156_5e-16_f64,
-    6.0e-323_f64
-);
+/// Unit roundoff u of `f32` (2⁻²⁴) and the absolute slack K = 16η = 2⁻¹⁴⁶.
+const U32: f32 = f32::EPSILON / 2.0;
+const K32: f32 = f32::from_bits(1 << 3);
+/// The same for `f64`: 2⁻⁵³ and 2⁻¹⁰⁷¹.
+const U64: f64 = f64::EPSILON / 2.0;
+const K64: f64 = f64::from_bits(1 << 3);
+
+orient2d_float!(orient2d_f32, f32, U32, K32);
+orient2d_float!(orient2d_f64, f64, U64, K64);
 
 #[cfg(test)]
 mod tests {
@@ -196,10 +197,10 @@ mod tests {
 
     #[test]
     fn constants_are_the_documented_powers_of_two() {
-        assert_eq!(f32::EPSILON / 2.0, 2f32.powi(-24));
-        assert_eq!(f32::from_bits(1 << 3) as f64, 2f64.powi(-146));
-        assert_eq!(f64::EPSILON / 2.0, 2f64.powi(-53));
-        assert_eq!(f64::from_bits(1 << 3), 2f64.powi(-1000) * 2f64.powi(-71));
+        assert_eq!(U32, 2f32.powi(-24));
+        assert_eq!(K32 as f64, 2f64.powi(-146));
+        assert_eq!(U64, 2f64.powi(-53));
+        assert_eq!(K64, 2f64.powi(-1000) * 2f64.powi(-71));
     }
 
     #[test]

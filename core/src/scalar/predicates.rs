@@ -69,6 +69,8 @@ fn decompose(x: f64) -> (bool, u64, i32) {
 /// The exact sign of `Σ sᵢ·xᵢ·yᵢ` for finite `f64` pairs, `sᵢ` being
 /// `+1` when the flag is false and `−1` when it is true.
 pub(crate) fn exact_sign_of_products(terms: &[(f64, f64, bool)]) -> Ordering {
+    #[cfg(test)]
+    tests::EXACT_CALLS.with(|c| c.set(c.get() + 1));
     // (negative, mantissa product, exponent) per nonzero term.
     let mut t = [(false, 0u128, 0i32); 6];
     let mut k = 0;
@@ -192,8 +194,36 @@ orient2d_float!(orient2d_f32, f32, U32, K32);
 orient2d_float!(orient2d_f64, f64, U64, K64);
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
+    extern crate std;
+
+    std::thread_local! {
+        /// How often the exact stage ran on this thread.
+        pub(crate) static EXACT_CALLS: core::cell::Cell<usize> = const { core::cell::Cell::new(0) };
+    }
+
+    /// The filter decides almost every orientation of random points (the
+    /// hot path), in both float types; only exactly collinear triples and
+    /// those within rounding of collinear reach the exact stage.
+    #[test]
+    fn filter_decides_random_queries() {
+        let mut rng = crate::test_util::Rng::new(3);
+        let n = 200_000;
+        let before = EXACT_CALLS.with(|c| c.get());
+        for _ in 0..n {
+            let mut r = || rng.range(-10.0, 10.0);
+            let (a, b, c) = ([r(), r()], [r(), r()], [r(), r()]);
+            let f = |p: [f64; 2]| [p[0] as f32, p[1] as f32];
+            let want = orient2d_exact(a, b, c);
+            assert_eq!(orient2d_f64(a, b, c), Some(want));
+            let _ = orient2d_f32(f(a), f(b), f(c));
+        }
+        // Each loop calls the exact stage once directly.
+        let fallbacks = EXACT_CALLS.with(|c| c.get()) - before - n;
+        std::println!("exact stage: {fallbacks} of {} filtered calls", 2 * n);
+        assert!(fallbacks * 10_000 <= 2 * n, "{fallbacks} fallbacks");
+    }
 
     #[test]
     fn constants_are_the_documented_powers_of_two() {

@@ -873,7 +873,15 @@ fn lattice_exact<S: Scalar>() {
     let names = ["crossing", "half-plane", "fan", "slab"];
     let mut bad = false;
     for &shift in shifts {
+        let calls = || crate::scalar::predicates::tests::EXACT_CALLS.with(|c| c.get());
+        let before = calls();
         let r = lattice_errors::<S>(&Lattice { shift });
+        std::println!(
+            "{} h=2^-{shift}: exact stage ran {} times for {} queries",
+            S::NAME,
+            calls() - before,
+            r[0][1] + r[0][3]
+        );
         for (m, c) in r.iter().enumerate() {
             std::println!(
                 "{} h=2^-{shift} {:10}: off boundary {}/{} wrong ({:.2} %), on boundary {}/{} wrong",

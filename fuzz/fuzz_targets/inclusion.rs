@@ -14,8 +14,8 @@
 //! is strictly inside or outside and on the same side of every edge as the
 //! nudged point; it is classified by its winding number (nonzero = inside),
 //! an algorithm independent of all four tests. Every test must agree with
-//! the oracle on every point (inside, outside and boundary; the signs are
-//! exact for these coordinates in all three types), hulls must be reported
+//! the oracle on every point (inside, outside and boundary; the orientation
+//! signs are exact in all three types), hulls must be reported
 //! convex, and for a split hull the two halves together claim each point
 //! exactly as often as the hull does (0 or 1): a point on the shared
 //! diagonal belongs to exactly one half.
@@ -274,8 +274,9 @@ fn run<T: Scalar>(input: &Input, limit: i64) {
 
 fuzz_target!(|input: Input| {
     match input.kind {
-        // f32: edge functions exact for |x|, |y| < 2^10.
-        Kind::F32 => run::<f32>(&input, 250),
+        // Orientation signs are exact in every type (Scalar::orient2d), so
+        // f32 takes the same range as f64 (half-units stay below 2^24).
+        Kind::F32 => run::<f32>(&input, if input.wide { 16000 } else { 64 }),
         Kind::F64 => run::<f64>(&input, if input.wide { 16000 } else { 64 }),
         // I16F16: edge vectors must fit ±32768.
         Kind::Fixed => run::<I16F16>(&input, if input.wide { 16000 } else { 64 }),

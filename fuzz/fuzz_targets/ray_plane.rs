@@ -2,8 +2,10 @@
 //! with arbitrary, parallel and in-plane rays.
 //!
 //! Oracle: construction fails exactly for non-finite input or a zero
-//! normal; a returned `t` is finite and `> t_min` (parallel and in-plane
-//! rays, whose exact `n·d` is 0, never give NaN or ±∞); and whenever the
+//! normal; a returned `t` is finite and `> t_min`; a ray with `m·d = 0`
+//! exactly for the normal m as given (parallel or in the plane; checked in
+//! i128 on the dyadic values where they span at most 18 binades) is no
+//! hit; and whenever the
 //! double-double reference `t* = u·(P − Q) / u·d` (u = n/|n| from the
 //! stored inputs) is well defined, the result agrees with it within the
 //! error bound of the three operations involved (normalising n, two dot
@@ -118,6 +120,16 @@ fn run<T: Scalar>(input: &Input) {
             T::NAME
         );
     }
+    // Exactly parallel or in the plane (m·d = 0 for the normal as given,
+    // decided in i128 where the six values span few enough binades): no hit.
+    if exact_dot_is_zero(nf, f3(d)) == Some(true) {
+        assert!(
+            got.is_none(),
+            "{}: m·d = 0 exactly for m {nf:?}, d {:?}, but t = {got:?}",
+            T::NAME,
+            f3(d)
+        );
+    }
     // Double-double reference with u = n/|n| (scaled by a power of two
     // first so nothing overflows).
     let (qf, df) = (f3(q), f3(d));
@@ -180,6 +192,47 @@ fn run<T: Scalar>(input: &Input) {
         }
     }
     let _ = Dd::ZERO;
+}
+
+/// Whether `a·b = 0` exactly, for finite dyadic inputs: each product is
+/// `m·2^e` with `m < 2^106`; shifted to the smallest exponent the three fit
+/// an i128 when the exponents span at most 18 bits. `None` otherwise.
+fn exact_dot_is_zero(a: [f64; 3], b: [f64; 3]) -> Option<bool> {
+    fn parts(x: f64) -> Option<(i128, i32)> {
+        if !x.is_finite() {
+            return None;
+        }
+        if x == 0.0 {
+            return Some((0, 0));
+        }
+        // x = m·2^e with |m| < 2^53: scale by powers of two (exact).
+        let mut e = 0;
+        let mut y = x;
+        while y.fract() != 0.0 {
+            y *= 2.0;
+            e -= 1;
+        }
+        while y.abs() >= 9007199254740992.0 {
+            y /= 2.0;
+            e += 1;
+        }
+        Some((y as i128, e))
+    }
+    let mut terms = Vec::new();
+    for i in 0..3 {
+        let (ma, ea) = parts(a[i])?;
+        let (mb, eb) = parts(b[i])?;
+        if ma != 0 && mb != 0 {
+            terms.push((ma * mb, ea + eb));
+        }
+    }
+    let Some(lo) = terms.iter().map(|t| t.1).min() else {
+        return Some(true);
+    };
+    if terms.iter().any(|t| t.1 - lo > 18) {
+        return None;
+    }
+    Some(terms.iter().map(|t| t.0 << (t.1 - lo)).sum::<i128>() == 0)
 }
 
 fuzz_target!(|input: Input| {

@@ -1,13 +1,15 @@
 //! Planes and line–plane intersection.
 
 use super::Ray;
-use super::wide::{dot3_checked, sub3};
+use super::wide::{dot3_checked, raw, sub3};
 use crate::math::Vec3;
 use crate::scalar::Scalar;
+use core::cmp::Ordering;
 use core::fmt;
 
 /// Why a [`Plane`] could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum PlaneError {
     /// An input is NaN or ±∞.
     NonFinite,
@@ -33,6 +35,10 @@ impl core::error::Error for PlaneError {}
 /// A plane through `point` with unit `normal`: the points X with
 /// `normal·(X − point) = 0`.
 ///
+/// The normal as given (before normalising) is kept too: whether a ray is
+/// parallel to the plane is decided exactly on it (see
+/// [`Self::intersect`]).
+///
 /// # Guarantees
 /// The point is finite and the normal is finite and unit length (to the
 /// rounding of `S`).
@@ -40,6 +46,7 @@ impl core::error::Error for PlaneError {}
 pub struct Plane<S> {
     point: Vec3<S>,
     normal: Vec3<S>,
+    given: Vec3<S>,
 }
 
 impl<S: Scalar> Plane<S> {
@@ -52,8 +59,13 @@ impl<S: Scalar> Plane<S> {
         if !(point.is_finite() && normal.is_finite()) {
             return Err(PlaneError::NonFinite);
         }
+        let given = normal;
         let normal = normal.try_normalize().ok_or(PlaneError::ZeroNormal)?;
-        Ok(Self { point, normal })
+        Ok(Self {
+            point,
+            normal,
+            given,
+        })
     }
 
     /// The plane through three points, normal `(b − a) × (c − a)`
@@ -100,12 +112,21 @@ impl<S: Scalar> Plane<S> {
     /// The parameter `t > t_min` at which the ray meets the plane:
     /// `t = n·(P − Q) / n·d`.
     ///
-    /// Returns `None` when the ray is parallel to the plane or lies in it
-    /// (`n·d == 0` exactly: no division is attempted), when the hit is at
+    /// Returns `None` when the ray is parallel to the plane or lies in it,
+    /// decided exactly: `m·d = 0` in exact arithmetic for the normal `m` as
+    /// given to [`Self::new`] (for [`Self::from_points`], the computed cross
+    /// product) and the ray direction `d` as stored. The unit normal is
+    /// rounded, so its `n·d` is usually not 0 for such a ray, and is not
+    /// used for this decision. Also `None` when the rounded `n·d` is 0
+    /// anyway (a direction within rounding of parallel), when the hit is at
     /// `t ≤ t_min`, or when the quotient overflows or is not finite (a
     /// nearly parallel ray whose hit is beyond the representable range).
+    /// Every other ray gets `t` from the unit normal.
     #[must_use]
     pub fn intersect(&self, ray: &Ray<S>, t_min: S) -> Option<S> {
+        if dot_sign(self.given, ray.dir())? == Ordering::Equal {
+            return None;
+        }
         let denom = dot3_checked(self.normal, ray.dir())?;
         if denom == S::ZERO {
             return None;
@@ -114,4 +135,50 @@ impl<S: Scalar> Plane<S> {
         let t = num.checked_div(denom)?;
         (t > t_min).then_some(t)
     }
+}
+
+/// The exact sign of `a·b`; `None` for a non-finite input.
+///
+/// Fixed point: exact in `i128` on the raw bits. Floats: a filter in `S`
+/// and, when it cannot decide, the exact big-integer sum of the three
+/// products (`crate::scalar::predicates`). The filter's bound: with unit
+/// roundoff u and half the smallest subnormal η, the computed sum of three
+/// products differs from the exact one by at most `γ₃·Σ|aᵢbᵢ| + 3η`
+/// (γ₃ = 3u/(1 − 3u)), which with `m~ = fl(Σ|fl(aᵢbᵢ)|)` is below
+/// `3.01·u·m~ + 4η`; the accepted margin `fl(fl(4u·m~) + 16η)` exceeds
+/// that even after its own two roundings. Overflow makes `m~` infinite or
+/// NaN, so the filter declines and the exact stage decides.
+fn dot_sign<S: Scalar>(a: Vec3<S>, b: Vec3<S>) -> Option<Ordering> {
+    if !(a.is_finite() && b.is_finite()) {
+        return None;
+    }
+    if !S::IS_FLOAT {
+        let w = |x: S| raw(x) as i128;
+        let s = w(a.x) * w(b.x) + w(a.y) * w(b.y) + w(a.z) * w(b.z);
+        return Some(s.cmp(&0));
+    }
+    let (p, q, r) = (a.x * b.x, a.y * b.y, a.z * b.z);
+    let sum = p + q + r;
+    let mag = p.abs() + q.abs() + r.abs();
+    // 16η: 2⁻¹⁴⁶ for f32, 2⁻¹⁰⁷¹ for f64 (both exact in their type).
+    let single = S::EPSILON.to_f64() > 1e-10;
+    let k = S::from_f64(if single {
+        f32::from_bits(1 << 3) as f64
+    } else {
+        f64::from_bits(1 << 3)
+    });
+    let four_u = S::TWO * S::EPSILON;
+    let bound = four_u * mag + k;
+    if sum > bound {
+        return Some(Ordering::Greater);
+    }
+    if -sum > bound {
+        return Some(Ordering::Less);
+    }
+    let f = |x: S| x.to_f64();
+    Some(crate::scalar::predicates::exact_sign_of_products(&[
+        (f(a.x), f(b.x), false),
+        (f(a.y), f(b.y), false),
+        (f(a.z), f(b.z), false),
+    ]))
 }

@@ -17,12 +17,16 @@
 //! Its equation is `E(p) = A·x + B·y + C` with `A = −d.y`, `B = d.x`,
 //! `C = d.y·a.x − d.x·a.y`, evaluated as `d.x·(p.y − a.y) − d.y·(p.x − a.x)`
 //! (relative to `a`, which keeps the terms small near the polygon). E is
-//! twice the signed area of (a, a + d, p): positive when p is left of the
-//! edge. The inclusion tests need only its sign ([`Edge2::sign`]): fixed
-//! point computes it exactly in `i128` on the raw bits, so it never
-//! overflows; floats evaluate E in `S`, and a non-finite value (overflow)
-//! makes the point outside. [`Edge2::value`] returns the number itself
-//! (fixed point: each product exact with one rounding,
+//! twice the signed area of (a, b, p) for the end vertex `b = v_{i+1}`:
+//! positive when p is left of the edge. The inclusion tests need only its
+//! sign ([`Edge2::sign`]), and that sign is **exact** in every scalar type:
+//! it is [`Scalar::orient2d`] of the edge's two original vertices `a`, `b`
+//! and p (never of the rounded `d` or of rounded coefficients), exact in
+//! `i128` for fixed point and by a filtered exact predicate for floats
+//! (Shewchuk, "Adaptive Precision Floating-Point Arithmetic and Fast
+//! Robust Geometric Predicates", 1997). The projection only drops a
+//! coordinate, so it is exact too. [`Edge2::value`] returns the number
+//! itself, rounded (fixed point: each product exact with one rounding,
 //! [`Scalar::sub_mul_flag`]; `None` on overflow).
 //!
 //! # Boundary policy
@@ -47,12 +51,12 @@
 //!   consistently oriented partition of the plane) never both claim a
 //!   point on it, and for a point inside the shared edge exactly one does.
 //! - A tiling of a region claims every point of its interior exactly once.
-//! - All four tests compute the same predicate, so they agree on *every*
-//!   point, on the boundary too, whenever the signs are exact: always for
-//!   fixed point, and for floats when the edge functions are computed
-//!   exactly (e.g. integer coordinates with |x|, |y| < 2²⁵ in `f64`, 2¹⁰
-//!   in `f32`); otherwise they can differ only within rounding distance of
-//!   the boundary.
+//! - All four tests compute the same predicate from exact signs, so for
+//!   every finite query they agree with each other and with the exact
+//!   answer for the vertices as given, in every scalar type: off the
+//!   boundary by the point's true position, on it by this rule (a point
+//!   one unit in the last place off an edge is classified by the side it
+//!   is on, however long the edge).
 //!
 //! The crossing test (1) in this form counts an edge when exactly one end
 //! has `y ≤ p.y` (the half-open rule: a vertex at the ray's height counts
@@ -60,7 +64,7 @@
 
 use super::Ray;
 use super::plane::Plane;
-use super::wide::{point_at, raw, sub2};
+use super::wide::{point_at, sub2};
 use crate::math::{Vec2, Vec3};
 use crate::scalar::Scalar;
 use core::cmp::Ordering;
@@ -68,6 +72,7 @@ use core::fmt;
 
 /// Why a [`Polygon`] could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum PolygonError {
     /// A vertex is NaN or ±∞.
     NonFinite,
@@ -102,13 +107,17 @@ impl fmt::Display for PolygonError {
 
 impl core::error::Error for PolygonError {}
 
-/// One directed 2D edge: start `a`, vector `d` to the next vertex. See the
-/// [module docs](self) for the equation and the boundary policy.
+/// One directed 2D edge: start `a`, end `b` (the next vertex) and the
+/// vector `d` between them. See the [module docs](self) for the equation
+/// and the boundary policy.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Edge2<S> {
     /// Start vertex.
     pub a: Vec2<S>,
-    /// End vertex minus start vertex.
+    /// End vertex (the next vertex of the polygon, as given).
+    pub b: Vec2<S>,
+    /// `b − a`: rounded to `S` for floats (its component signs are still
+    /// exact), exact for fixed point. The predicates use `a` and `b`.
     pub d: Vec2<S>,
 }
 
@@ -137,28 +146,32 @@ impl<S: Scalar> Edge2<S> {
         (!of && e.is_finite()).then_some(e)
     }
 
-    /// The sign of `E(p)`: exact for fixed point (integer arithmetic on the
-    /// raw bits, which cannot overflow); from [`Self::value`] for floats
-    /// (`None` when that overflows or is NaN).
+    /// The exact sign of `E(p)`, from `a`, `b` and `p`
+    /// ([`Scalar::orient2d`]); `None` only when `p` is not finite.
     #[must_use]
     pub fn sign(&self, p: Vec2<S>) -> Option<Ordering> {
-        if S::IS_FLOAT {
-            self.value(p)?.partial_cmp(&S::ZERO)
-        } else {
-            Some(sign_raw(raw2(self.a), raw2(self.d), raw2(p)))
-        }
+        S::orient2d(arr(self.a), arr(self.b), arr(p))
     }
 
     /// Whether the nudged point `p'` is left of the edge (the boundary
     /// policy in the [module docs](self)). `None` when [`Self::sign`] is.
     #[must_use]
     pub fn owns(&self, p: Vec2<S>) -> Option<bool> {
-        Some(owns_from(
-            self.sign(p)?,
-            self.d.y.partial_cmp(&S::ZERO)?,
-            self.d.x.partial_cmp(&S::ZERO)?,
-        ))
+        owns_segment(self.a, self.b, p)
     }
+}
+
+/// The boundary policy for the directed segment a→b, exactly.
+fn owns_segment<S: Scalar>(a: Vec2<S>, b: Vec2<S>, p: Vec2<S>) -> Option<bool> {
+    Some(owns_from(
+        S::orient2d(arr(a), arr(b), arr(p))?,
+        b.y.partial_cmp(&a.y)?,
+        b.x.partial_cmp(&a.x)?,
+    ))
+}
+
+fn arr<S: Scalar>(v: Vec2<S>) -> [S; 2] {
+    [v.x, v.y]
 }
 
 /// The boundary policy from the signs of `E(p)`, `d.y` and `d.x`.
@@ -166,17 +179,6 @@ fn owns_from(e: Ordering, dy: Ordering, dx: Ordering) -> bool {
     e == Ordering::Greater
         || (e == Ordering::Equal
             && (dy == Ordering::Less || (dy == Ordering::Equal && dx == Ordering::Greater)))
-}
-
-/// Raw fixed-point integers of a 2D point (see [`raw`]).
-fn raw2<S: Scalar>(v: Vec2<S>) -> (i128, i128) {
-    (raw(v.x) as i128, raw(v.y) as i128)
-}
-
-/// Exact sign of `d.x·(p.y − a.y) − d.y·(p.x − a.x)` on raw integers
-/// (|raw| < 2³², so every product is below 2⁶⁵).
-fn sign_raw(a: (i128, i128), d: (i128, i128), p: (i128, i128)) -> Ordering {
-    (d.0 * (p.1 - a.1) - d.1 * (p.0 - a.0)).cmp(&0)
 }
 
 /// Which inclusion test [`Polygon::contains`] runs.
@@ -207,8 +209,8 @@ pub enum InclusionTest {
 /// convex ([`Self::is_convex`] is false), [`InclusionTest::HalfPlane`] and
 /// [`InclusionTest::Fan`] fall back to [`InclusionTest::Crossing`].
 ///
-/// Construction does its one-off bookkeeping (Newell normal, orientation,
-/// convexity) in `f64`; queries use only `S`.
+/// Construction does its one-off bookkeeping (Newell normal, orientation)
+/// in `f64`; queries use only `S` and the exact [`Scalar::orient2d`].
 #[derive(Clone, Debug)]
 pub struct Polygon<S, const N: usize> {
     plane: Plane<S>,
@@ -296,7 +298,7 @@ impl<S: Scalar, const N: usize> Polygon<S, N> {
             let b = pts[(i + 1) % pts.len()];
             let d = sub2(b, a).ok_or(PolygonError::Overflow)?;
             // Cannot fail: edges and pts have the same capacity.
-            let _ = edges.push(Edge2 { a, d });
+            let _ = edges.push(Edge2 { a, b, d });
         }
         let ccw = n[axis] > 0.0;
         let convex = is_convex(&edges, ccw);
@@ -343,7 +345,7 @@ impl<S: Scalar, const N: usize> Polygon<S, N> {
     }
 
     /// Whether the projected polygon is convex (collinear vertices
-    /// allowed). Computed in `f64` at construction.
+    /// allowed). Decided exactly at construction.
     #[must_use]
     pub fn is_convex(&self) -> bool {
         self.convex
@@ -375,10 +377,9 @@ impl<S: Scalar, const N: usize> Polygon<S, N> {
     /// Test (1): odd-crossing rule; any simple polygon.
     #[must_use]
     pub fn contains_crossing(&self, p: Vec2<S>) -> bool {
-        let n = self.edges.len();
         let mut inside = false;
-        for (i, e) in self.edges.iter().enumerate() {
-            let b = self.edges[(i + 1) % n].a;
+        for e in self.edges.iter() {
+            let b = e.b;
             // Half-open in y: a vertex at the ray's height counts as below.
             if (e.a.y <= p.y) == (b.y <= p.y) {
                 continue;
@@ -434,18 +435,9 @@ impl<S: Scalar, const N: usize> Polygon<S, N> {
         let (mut lo, mut hi) = (1, n - 1);
         while hi - lo > 1 {
             let mid = lo + (hi - lo) / 2;
-            let diag_inward = if S::IS_FLOAT {
-                inward(&Edge2 {
-                    a: v0,
-                    d: sub2(e[mid].a, v0)?,
-                })?
-            } else {
-                // Exact, and no overflow even where v_mid − v0 would.
-                let (a, b) = (raw2(v0), raw2(e[mid].a));
-                let d = (b.0 - a.0, b.1 - a.1);
-                let s = sign_raw(a, d, raw2(p));
-                owns_from(s, d.1.cmp(&0), d.0.cmp(&0)) == self.ccw
-            };
+            // Exact, from the two vertices (no rounded or overflowing
+            // v_mid − v0).
+            let diag_inward = owns_segment(v0, e[mid].a, p)? == self.ccw;
             if diag_inward {
                 lo = mid;
             } else {
@@ -471,9 +463,9 @@ pub(crate) fn project<S: Scalar>(k: usize, p: Vec3<S>) -> Vec2<S> {
     Vec2::new(c[(k + 1) % 3], c[(k + 2) % 3])
 }
 
-/// Convexity in `f64`: every turn has the polygon's orientation or is
-/// straight ahead, and the edge directions go round once (the sign of d.x
-/// changes exactly twice, which rules out star polygons).
+/// Convexity: every turn (exact, [`Scalar::orient2d`]) has the polygon's
+/// orientation or is straight ahead, and the edge directions go round once
+/// (the sign of d.x changes exactly twice, which rules out star polygons).
 fn is_convex<S: Scalar>(edges: &[Edge2<S>], ccw: bool) -> bool {
     let n = edges.len();
     let dir = |e: &Edge2<S>| (e.d.x.to_f64(), e.d.y.to_f64());
@@ -483,11 +475,16 @@ fn is_convex<S: Scalar>(edges: &[Edge2<S>], ccw: bool) -> bool {
     for i in 0..n {
         let (ax, ay) = dir(&edges[i]);
         let (bx, by) = dir(&edges[(i + 1) % n]);
-        let turn = ax * by - ay * bx;
-        if (turn > 0.0) != ccw && turn != 0.0 {
+        let next = &edges[(i + 1) % n];
+        let Some(turn) = S::orient2d(arr(edges[i].a), arr(edges[i].b), arr(next.b)) else {
+            return false;
+        };
+        if turn != Ordering::Equal && (turn == Ordering::Greater) != ccw {
             return false;
         }
-        if turn == 0.0 && ax * bx + ay * by < 0.0 {
+        // Exactly collinear: the rounded directions are parallel too, and
+        // their dot product has the exact sign.
+        if turn == Ordering::Equal && ax * bx + ay * by < 0.0 {
             return false;
         }
         let s = if ax > 0.0 {

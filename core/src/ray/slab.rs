@@ -31,10 +31,12 @@ use super::Polygon;
 use super::polygon::Edge2;
 use crate::math::Vec2;
 use crate::scalar::Scalar;
+use core::cmp::Ordering;
 use core::fmt;
 
 /// Why a [`SlabIndex`] could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum SlabError {
     /// `ys` or `starts` is shorter than the polygon's vertex count.
     VertexStorage {
@@ -138,22 +140,11 @@ impl<'a, S: Scalar, const N: usize> SlabIndex<'a, S, N> {
                     count += 1;
                 }
             }
-            // Order left to right at mid-slab. The edges do not cross inside
-            // the slab, so any interior height gives the same order; f64 is
-            // used only for this one-off sort.
-            let ym = 0.5 * (y0.to_f64() + y1.to_f64());
-            let x_at = |i: u32| {
-                let e = &pe[i as usize];
-                let (ax, ay) = (e.a.x.to_f64(), e.a.y.to_f64());
-                let (dx, dy) = (e.d.x.to_f64(), e.d.y.to_f64());
-                ax + dx * ((ym - ay) / dy)
-            };
+            // Order left to right inside the slab, exactly (see
+            // `left_to_right`).
             let start = starts[k] as usize;
-            edges[start..count].sort_unstable_by(|&a, &b| {
-                x_at(a)
-                    .partial_cmp(&x_at(b))
-                    .unwrap_or(core::cmp::Ordering::Equal)
-            });
+            edges[start..count]
+                .sort_unstable_by(|&a, &b| left_to_right(&pe[a as usize], &pe[b as usize]));
         }
         starts[slabs] = count as u32;
         Ok(Self {
@@ -210,6 +201,43 @@ impl<'a, S: Scalar, const N: usize> SlabIndex<'a, S, N> {
             }
         });
         !overflow && (list.len() - left_count) % 2 == 1
+    }
+}
+
+/// The order of two edges that both cross one slab, left to right, from
+/// exact orientations of their original vertices only.
+///
+/// Edges of a simple polygon meet only at shared vertices. Direct both
+/// upward, `i = p₀→p₁`, `j = q₀→q₁`. If `q₀.y ≥ p₀.y`, then q₀ lies within
+/// i's height range, and if it is strictly right of i so is all of j up to
+/// the lower top (the segments cannot cross), in particular inside the
+/// slab; if q₀ is on the line of i it is the shared vertex p₀, and the
+/// lower of the two tops decides the same way. Otherwise p₀ lies within
+/// j's range and decides, mirrored.
+fn left_to_right<S: Scalar>(i: &Edge2<S>, j: &Edge2<S>) -> Ordering {
+    let up = |e: &Edge2<S>| {
+        if e.a.y <= e.b.y {
+            ([e.a.x, e.a.y], [e.b.x, e.b.y])
+        } else {
+            ([e.b.x, e.b.y], [e.a.x, e.a.y])
+        }
+    };
+    let (p0, p1) = up(i);
+    let (q0, q1) = up(j);
+    // Finite vertices: never `None`.
+    let o = |a, b, c| S::orient2d(a, b, c).unwrap_or(Ordering::Equal);
+    // `Less` means i comes first: a point of j right of i (orientation
+    // `Less`), or a point of i left of j (orientation `Greater`).
+    let by_i = |c| o(p0, p1, c);
+    let by_j = |c| o(q0, q1, c).reverse();
+    if q0[1] >= p0[1] {
+        let s = by_i(q0);
+        if s != Ordering::Equal {
+            return s;
+        }
+        if q1[1] <= p1[1] { by_i(q1) } else { by_j(p1) }
+    } else {
+        by_j(p0)
     }
 }
 

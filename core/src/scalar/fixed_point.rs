@@ -526,6 +526,13 @@ impl<Frac: LeEqU32 + 'static> Scalar for Fx<Frac> {
         };
         i32::try_from(r).ok()
     }
+    fn orient2d(a: [Self; 2], b: [Self; 2], c: [Self; 2]) -> Option<Ordering> {
+        // Raw differences fit 33 bits, their products 66: exact in i128.
+        let w = |v: Self| v.bits as i128;
+        let det =
+            (w(b[0]) - w(a[0])) * (w(c[1]) - w(a[1])) - (w(b[1]) - w(a[1])) * (w(c[0]) - w(a[0]));
+        Some(det.cmp(&0))
+    }
 }
 
 #[cfg(test)]

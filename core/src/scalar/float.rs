@@ -2,9 +2,10 @@
 
 use super::Scalar;
 use super::float_math as m;
+use super::predicates as p;
 
 macro_rules! impl_float {
-    ($t:ty, $name:literal, $sqrt:path, $sincos:path, $atan2:path, $asin:path) => {
+    ($t:ty, $name:literal, $sqrt:path, $sincos:path, $atan2:path, $asin:path, $orient:path) => {
         impl Scalar for $t {
             const ZERO: Self = 0.0;
             const ONE: Self = 1.0;
@@ -125,6 +126,10 @@ macro_rules! impl_float {
                     Some(t)
                 }
             }
+            #[inline]
+            fn orient2d(a: [Self; 2], b: [Self; 2], c: [Self; 2]) -> Option<core::cmp::Ordering> {
+                $orient(a, b, c)
+            }
         }
     };
 }
@@ -134,5 +139,21 @@ fn finite<T: Scalar>(v: T) -> Option<T> {
     if v.is_finite() { Some(v) } else { None }
 }
 
-impl_float!(f32, "f32", m::sqrtf, m::sincosf, m::atan2f, m::asinf);
-impl_float!(f64, "f64", m::sqrt, m::sincos, m::atan2, m::asin);
+impl_float!(
+    f32,
+    "f32",
+    m::sqrtf,
+    m::sincosf,
+    m::atan2f,
+    m::asinf,
+    p::orient2d_f32
+);
+impl_float!(
+    f64,
+    "f64",
+    m::sqrt,
+    m::sincos,
+    m::atan2,
+    m::asin,
+    p::orient2d_f64
+);

@@ -28,9 +28,11 @@ mod fixed_point;
 pub(crate) use fixed_point::widening_mul;
 mod float;
 mod float_math;
+pub(crate) mod predicates;
 
 pub use fixed_point::{Fx, I2F30, I16F16, I20F12, I24F8};
 
+use core::cmp::Ordering;
 use core::fmt::Debug;
 use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
@@ -178,6 +180,19 @@ pub trait Scalar:
     /// NaN, ±∞ or a value outside `i32`. Used to snap projected vertices to
     /// the sub-pixel grid.
     fn to_subpixel(self, frac_bits: u32) -> Option<i32>;
+
+    /// The exact sign of `(b − a) × (c − a) = (b.x − a.x)(c.y − a.y) −
+    /// (b.y − a.y)(c.x − a.x)`, points given as `[x, y]`: `Greater` when
+    /// `a, b, c` turn counter-clockwise (c left of a→b, y up), `Equal` when
+    /// collinear. `None` only for a non-finite input.
+    ///
+    /// Exact for every finite input, computed from the inputs themselves
+    /// (no rounded intermediate decides): fixed point in `i128` on the raw
+    /// bits; floats by a filter in `Self` with a proven error bound and an
+    /// exact big-integer fallback on the dyadic inputs (Shewchuk's adaptive
+    /// scheme, the private `predicates` module), which only inputs within
+    /// rounding distance of collinear reach.
+    fn orient2d(a: [Self; 2], b: [Self; 2], c: [Self; 2]) -> Option<Ordering>;
 }
 
 #[cfg(test)]

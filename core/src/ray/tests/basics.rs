@@ -167,6 +167,7 @@ per_scalar!(
     camera_rays_match_projection,
     chapter_camera_pixel_centres,
     extreme_inputs_never_panic_or_nan,
+    plane_exactly_in_plane_rays_miss,
 );
 
 /// Every constructor and intersection on extreme and non-finite inputs:
@@ -237,4 +238,56 @@ fn extreme_inputs_never_panic_or_nan<S: Scalar>() {
             let _ = cam.column_ray(7);
         }
     }
+}
+
+/// Item 8 of issue 14: rays lying exactly in the plane (and rays exactly
+/// parallel to it) never hit. The normal n is an integer vector of
+/// generic direction, the direction is d = n × w and the origin
+/// P + n × w₂ for integer w, w₂, all exactly representable in every type;
+/// n·d = 0 is checked in i128. Normalising n rounds, so n̂·d is not 0.
+fn plane_exactly_in_plane_rays_miss<S: Scalar>() {
+    let mut rng = Rng::new(0x1A_B1A7);
+    let cross = |a: [i64; 3], b: [i64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let v = |a: [i64; 3]| {
+        Vec3::new(
+            S::from_i32(a[0] as i32),
+            S::from_i32(a[1] as i32),
+            S::from_i32(a[2] as i32),
+        )
+    };
+    let mut hits = 0;
+    let mut cases = 0;
+    for _ in 0..300 {
+        let mut r = || rng.int(-40, 40);
+        let n = [r(), r(), r()];
+        let (w, w2) = ([r(), r(), r()], [r(), r(), r()]);
+        let p = [r(), r(), r()];
+        let (d, off) = (cross(n, w), cross(n, w2));
+        let dot =
+            |a: [i64; 3], b: [i64; 3]| (0..3).map(|i| a[i] as i128 * b[i] as i128).sum::<i128>();
+        if n == [0, 0, 0] || d == [0, 0, 0] {
+            continue;
+        }
+        assert_eq!(dot(n, d), 0);
+        assert_eq!(dot(n, off), 0);
+        let plane = Plane::new(v(p), v(n)).unwrap();
+        let o = [p[0] + off[0], p[1] + off[1], p[2] + off[2]];
+        // In the plane, and parallel at distance |n|² above it.
+        for origin in [o, [o[0] + n[0], o[1] + n[1], o[2] + n[2]]] {
+            let ray = Ray::new(v(origin), v(d)).unwrap();
+            cases += 1;
+            if let Some(t) = plane.intersect(&ray, S::from_f64(-1e4)) {
+                hits += 1;
+                std::println!("{}: n {n:?} d {d:?} origin {origin:?}: t = {t:?}", S::NAME);
+            }
+        }
+    }
+    std::println!("{}: {hits} of {cases} in-plane/parallel rays hit", S::NAME);
+    assert_eq!(hits, 0, "{}: in-plane or parallel rays hit", S::NAME);
 }

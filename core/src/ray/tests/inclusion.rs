@@ -710,4 +710,196 @@ per_scalar!(
     shared_edge_diagonal_split,
     shared_edges_grid_tiling,
     degenerate_polygons_are_errors,
+    lattice_exact,
 );
+
+/// Adversarial lattice for item 7 of issue 14: coordinates `0.5 + X·h` with
+/// `h = 2^-shift` and integer `0 ≤ X < 2^(shift−1)`, so every coordinate
+/// lies in [0.5, 1), where it is exactly representable in `S` (`shift` ≤ 24
+/// for f32, ≤ 53 for f64, ≤ 16 for I16F16) and `h` is one unit in the last
+/// place: the finest grid the type can express there.
+struct Lattice {
+    shift: u32,
+}
+
+impl Lattice {
+    fn half(&self) -> i64 {
+        1 << (self.shift - 1)
+    }
+    /// A lattice coordinate at fraction `f` of the range, plus `odd`.
+    fn at(&self, f: f64, odd: i64) -> i64 {
+        (f * self.half() as f64) as i64 + odd
+    }
+    fn coord<S: Scalar>(&self, x: i64) -> S {
+        // 0.5 + x·2^-shift is exact in f64 (shift ≤ 53, x < 2^(shift−1)),
+        // and in [0.5, 1) it is a multiple of S's unit there: exact in S.
+        let v = 0.5 + x as f64 * 2f64.powi(-(self.shift as i32));
+        let s = S::from_f64(v);
+        assert_eq!(s.to_f64(), v, "lattice point not representable");
+        s
+    }
+    fn pt<S: Scalar>(&self, p: P) -> Vec2<S> {
+        Vec2::new(self.coord(p.0), self.coord(p.1))
+    }
+}
+
+/// Exact oracle on lattice integers (i128; |X| < 2⁵², so every product is
+/// below 2¹⁰⁶): the crossing rule applied to the nudged point
+/// `p' = p + (δ, δη)` symbolically. An edge with one end at `y ≤ p.y` and
+/// the other above is counted when `p'` is strictly left of it directed
+/// upward: `E(p') = E(p) − d.y·δ + d.x·δη`, whose sign is that of `E(p)`,
+/// or of `−d.y` when `E(p) = 0`, so a point on the edge is never strictly
+/// left. Returns (inside, on the boundary).
+fn lattice_oracle(poly: &[P], p: P) -> (bool, bool) {
+    let n = poly.len();
+    let mut inside = false;
+    let mut on = false;
+    for i in 0..n {
+        let (a, b) = (poly[i], poly[(i + 1) % n]);
+        let e = cross(a, b, p);
+        let within = p.0 >= a.0.min(b.0)
+            && p.0 <= a.0.max(b.0)
+            && p.1 >= a.1.min(b.1)
+            && p.1 <= a.1.max(b.1);
+        on |= e == 0 && within;
+        if (a.1 <= p.1) != (b.1 <= p.1) {
+            let up = b.1 > a.1;
+            if (up && e > 0) || (!up && e < 0) {
+                inside = !inside;
+            }
+        }
+    }
+    (inside, on)
+}
+
+/// The lattice polygons: a generic convex quadrilateral, a concave
+/// pentagon, a quadrilateral with an edge along (7, 3) (so lattice points
+/// lie exactly on it) and a triangle with a horizontal edge.
+fn lattice_polygons(l: &Lattice) -> Vec<Vec<P>> {
+    let v = |fx: f64, ox: i64, fy: f64, oy: i64| (l.at(fx, ox), l.at(fy, oy));
+    let s = l.at(0.8, 0) / 7;
+    let base = v(0.1, 0, 0.1, 0);
+    vec![
+        vec![
+            v(0.02, 3, 0.05, 7),
+            v(0.97, 1, 0.11, 5),
+            v(0.83, 11, 0.96, 1),
+            v(0.07, 5, 0.71, 3),
+        ],
+        vec![
+            v(0.02, 3, 0.05, 7),
+            v(0.97, 1, 0.11, 5),
+            v(0.83, 11, 0.96, 1),
+            v(0.45, 9, 0.40, 13),
+            v(0.07, 5, 0.71, 3),
+        ],
+        vec![
+            base,
+            (base.0 + 7 * s, base.1 + 3 * s),
+            v(0.6, 1, 0.9, 3),
+            v(0.05, 7, 0.6, 5),
+        ],
+        vec![v(0.1, 0, 0.2, 0), v(0.9, 0, 0.2, 0), v(0.37, 3, 0.93, 1)],
+    ]
+}
+
+/// Per method (crossing, half-plane, fan, slab): wrong answers off the
+/// boundary, queries off it, wrong answers on it, queries on it, over
+/// (2G + 1)² lattice points around every vertex and every edge midpoint
+/// of every lattice polygon, in both orientations.
+fn lattice_errors<S: Scalar>(l: &Lattice) -> [[usize; 4]; 4] {
+    const G: i64 = 16;
+    let mut out = [[0usize; 4]; 4];
+    for base in lattice_polygons(l) {
+        for rev in [false, true] {
+            let mut pts = base.clone();
+            if rev {
+                pts.reverse();
+            }
+            let verts: Vec<Vec3<S>> = pts
+                .iter()
+                .map(|&p| {
+                    let q = l.pt::<S>(p);
+                    Vec3::new(q.x, q.y, S::ZERO)
+                })
+                .collect();
+            let poly = Polygon::<S, 8>::new(&verts).expect("lattice polygon");
+            let n = poly.edges().len();
+            assert_eq!(n, pts.len());
+            let (mut ys, mut starts, mut edges) =
+                (vec![S::ZERO; n], vec![0u32; n], vec![0u32; n * (n - 1)]);
+            let slabs = SlabIndex::build(&poly, &mut ys, &mut starts, &mut edges).expect("sized");
+            let mut centres = pts.clone();
+            for i in 0..n {
+                let (a, b) = (pts[i], pts[(i + 1) % n]);
+                centres.push(((a.0 + b.0) / 2, (a.1 + b.1) / 2));
+            }
+            for c in centres {
+                for dx in -G..=G {
+                    for dy in -G..=G {
+                        let p = (c.0 + dx, c.1 + dy);
+                        let (want, on) = lattice_oracle(&pts, p);
+                        let q = l.pt::<S>(p);
+                        let got = [
+                            poly.contains(q, InclusionTest::Crossing),
+                            poly.contains(q, InclusionTest::HalfPlane),
+                            poly.contains(q, InclusionTest::Fan),
+                            slabs.contains(q),
+                        ];
+                        for (m, &g) in got.iter().enumerate() {
+                            let k = if on { 2 } else { 0 };
+                            out[m][k] += (g != want) as usize;
+                            out[m][k + 1] += 1;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Item 7 of issue 14: every method is exactly right on the adversarial
+/// lattice, off the boundary and (by the ownership rule) on it, at the
+/// finest spacing each type has in [0.5, 1) and, for f64, also at 2⁻²⁴.
+fn lattice_exact<S: Scalar>() {
+    let shifts: &[u32] = if is_f64::<S>() {
+        &[24, 53]
+    } else if S::IS_FLOAT {
+        &[24]
+    } else {
+        &[16]
+    };
+    let names = ["crossing", "half-plane", "fan", "slab"];
+    let mut bad = false;
+    for &shift in shifts {
+        let calls = || crate::scalar::predicates::tests::EXACT_CALLS.with(|c| c.get());
+        let before = calls();
+        let r = lattice_errors::<S>(&Lattice { shift });
+        std::println!(
+            "{} h=2^-{shift}: exact stage ran {} times for {} queries",
+            S::NAME,
+            calls() - before,
+            r[0][1] + r[0][3]
+        );
+        for (m, c) in r.iter().enumerate() {
+            std::println!(
+                "{} h=2^-{shift} {:10}: off boundary {}/{} wrong ({:.2} %), on boundary {}/{} wrong",
+                S::NAME,
+                names[m],
+                c[0],
+                c[1],
+                100.0 * c[0] as f64 / c[1] as f64,
+                c[2],
+                c[3]
+            );
+            assert!(c[3] > 0, "the lattice has boundary points");
+            bad |= c[0] != 0 || c[2] != 0;
+        }
+    }
+    assert!(
+        !bad,
+        "{}: misclassified lattice points (see above)",
+        S::NAME
+    );
+}

@@ -7,7 +7,9 @@ use sightline::math::Vec3;
 use sightline::pipeline::MeshVertex;
 use sightline::raster::DepthBuffer;
 use sightline::scalar::{I16F16, Scalar};
-use sightline::scene::{Color, PreparedObject, RayScene, Renderer, Scene, SceneError};
+use sightline::scene::{
+    Color, PreparedObject, RayBuffers, RayScene, RayTriangle, Renderer, Scene, SceneError,
+};
 use sightline::target::Framebuffer;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -161,6 +163,32 @@ pub fn ray_with<S: Scalar + Send + Sync>(
     )
 }
 
+/// Builds the scene's ray path for a `width`×`height` image, with its
+/// uniform grid in storage allocated here (the sizes of
+/// [`Scene::ray_storage`]), and hands it to `f`.
+///
+/// # Errors
+/// The scene's [`SceneError`].
+pub fn with_ray_scene<S: Scalar, R>(
+    scene: &Scene<'_>,
+    width: u16,
+    height: u16,
+    f: impl FnOnce(&RayScene<'_, S>) -> R,
+) -> Result<R, SceneError> {
+    let view = scene.view::<S>(width, height)?;
+    let need = scene.ray_storage();
+    let mut triangles = vec![RayTriangle::EMPTY; need.triangles];
+    let mut cells = vec![0u32; need.cells];
+    let mut items = vec![0u32; need.items];
+    let buffers = RayBuffers {
+        triangles: &mut triangles,
+        cells: &mut cells,
+        items: &mut items,
+    };
+    let rs = RayScene::with_grid(scene, &view, buffers)?;
+    Ok(f(&rs))
+}
+
 /// [`ray_with`], with [`Progress::Lines`] going to `sink` once `after` has
 /// passed.
 fn ray_report<S: Scalar + Send + Sync>(
@@ -172,8 +200,21 @@ fn ray_report<S: Scalar + Send + Sync>(
     after: Duration,
     sink: &(dyn Fn(&str) + Sync),
 ) -> Result<Image, SceneError> {
-    let view = scene.view::<S>(width, height)?;
-    let rs = RayScene::new(scene, &view)?;
+    with_ray_scene::<S, _>(scene, width, height, |rs| {
+        ray_rows(rs, scene, parallel, progress, after, sink)
+    })
+}
+
+/// Renders every row of `rs` (see [`ray_report`]).
+fn ray_rows<S: Scalar + Send + Sync>(
+    rs: &RayScene<'_, S>,
+    scene: &Scene<'_>,
+    parallel: bool,
+    progress: Progress,
+    after: Duration,
+    sink: &(dyn Fn(&str) + Sync),
+) -> Image {
+    let (width, height) = (rs.width(), rs.height());
     let mut img = Image::new(width, height, scene.background);
     let bar = if progress == Progress::Bar {
         let b = ProgressBar::new(height as u64);
@@ -215,7 +256,7 @@ fn ray_report<S: Scalar + Send + Sync>(
         }
     }
     bar.finish_and_clear();
-    Ok(img)
+    img
 }
 
 /// Renders with the chosen scalar and path (`Method::Both` is not a

@@ -59,7 +59,7 @@
 mod depth;
 mod edge;
 mod gradient;
-#[cfg(any(feature = "perspective", feature = "raycast"))]
+#[cfg(feature = "perspective")]
 pub(crate) mod persp_div;
 mod shader;
 #[cfg(feature = "texture")]

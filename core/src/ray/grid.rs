@@ -128,7 +128,7 @@ impl<'a> Mailbox<'a> {
 ///
 /// # Guarantees
 /// After [`Self::build`] succeeds no query panics or indexes out of bounds.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub struct Grid<'a, S> {
     bounds: Aabb<S>,
     res: [usize; 3],
@@ -150,8 +150,30 @@ impl<'a, S: Scalar> Grid<'a, S> {
         cell_start: &'a mut [u32],
         items: &'a mut [u32],
     ) -> Result<Self, GridError> {
-        let (first, rest) = boxes.split_first().ok_or(GridError::Empty)?;
-        if res.contains(&0) {
+        Self::build_with(
+            boxes.len(),
+            |i| boxes.get(i).copied(),
+            res,
+            cell_start,
+            items,
+        )
+    }
+
+    /// As [`Self::build`], with primitive `i`'s box given by `box_of(i)`
+    /// for `i < count` (so the caller needs no slice of boxes; `box_of`
+    /// is called a few times per primitive). A `None` box gives
+    /// [`GridError::Empty`].
+    ///
+    /// # Errors
+    /// [`GridError`].
+    pub fn build_with(
+        count: usize,
+        box_of: impl Fn(usize) -> Option<Aabb<S>>,
+        res: [u16; 3],
+        cell_start: &'a mut [u32],
+        items: &'a mut [u32],
+    ) -> Result<Self, GridError> {
+        if count == 0 || res.contains(&0) {
             return Err(GridError::Empty);
         }
         let res = res.map(usize::from);
@@ -160,13 +182,16 @@ impl<'a, S: Scalar> Grid<'a, S> {
             .and_then(|c| c.checked_mul(res[2]))
             .filter(|&c| c < u32::MAX as usize)
             .ok_or(GridError::TooLarge)?;
-        if boxes.len() > u32::MAX as usize {
+        if count > u32::MAX as usize {
             return Err(GridError::TooLarge);
         }
         if cell_start.len() < cells + 1 {
             return Err(GridError::CellStorage { needed: cells + 1 });
         }
-        let bounds = rest.iter().fold(*first, |a, b| a.union(b));
+        let mut bounds = box_of(0).ok_or(GridError::Empty)?;
+        for i in 1..count {
+            bounds = bounds.union(&box_of(i).ok_or(GridError::Empty)?);
+        }
         let n = |k: usize| S::from_i32(res[k] as i32);
         let ext = bounds.max() - bounds.min();
         // A zero extent (flat scene) still gets cells of positive size.
@@ -181,12 +206,14 @@ impl<'a, S: Scalar> Grid<'a, S> {
             cell,
             cell_start: &[],
             items: &[],
-            prims: boxes.len(),
+            prims: count,
         };
+        // Every box is known to exist (the union above).
+        let box_at = |i: usize| box_of(i).unwrap_or(bounds);
         // The total first (checked), so no per-cell counter can overflow.
         let mut needed = 0usize;
-        for b in boxes {
-            let (lo, hi) = grid.cell_range(b);
+        for i in 0..count {
+            let (lo, hi) = grid.cell_range(&box_at(i));
             let n = (hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
             needed = needed
                 .checked_add(n)
@@ -199,8 +226,8 @@ impl<'a, S: Scalar> Grid<'a, S> {
         // Count per cell into cell_start[c + 1], then prefix sums.
         let cell_start = &mut cell_start[..=cells];
         cell_start.fill(0);
-        for b in boxes {
-            let (lo, hi) = grid.cell_range(b);
+        for i in 0..count {
+            let (lo, hi) = grid.cell_range(&box_at(i));
             for z in lo[2]..=hi[2] {
                 for y in lo[1]..=hi[1] {
                     for x in lo[0]..=hi[0] {
@@ -213,8 +240,8 @@ impl<'a, S: Scalar> Grid<'a, S> {
             cell_start[c + 1] += cell_start[c];
         }
         // Fill, using cell_start[c] as the cursor, then shift back.
-        for (i, b) in boxes.iter().enumerate() {
-            let (lo, hi) = grid.cell_range(b);
+        for i in 0..count {
+            let (lo, hi) = grid.cell_range(&box_at(i));
             for z in lo[2]..=hi[2] {
                 for y in lo[1]..=hi[1] {
                     for x in lo[0]..=hi[0] {
@@ -238,6 +265,12 @@ impl<'a, S: Scalar> Grid<'a, S> {
     #[must_use]
     pub fn bounds(&self) -> &Aabb<S> {
         &self.bounds
+    }
+
+    /// Cells per axis.
+    #[must_use]
+    pub fn resolution(&self) -> [usize; 3] {
+        self.res
     }
 
     fn index(&self, c: [usize; 3]) -> usize {

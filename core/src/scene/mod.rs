@@ -9,7 +9,7 @@
 //! | `prepared.rs` | the prepared form, made once: [`PreparedMesh`] (positions and normals in the render scalar), [`PreparedObject`], [`Scene::prepare`] into caller storage |
 //! | `render.rs` | the raster path per frame: [`Renderer::project`] (each vertex once) and [`Frame::draw`] (per band) |
 //! | `shade.rs` | the one material model both paths use |
-//! | `ray.rs` | [`RayScene`]: per-pixel and per-row ray casting |
+//! | `ray/` | [`RayScene`]: per-pixel and per-row ray casting, shaded at the hit; with `grid`, a uniform grid per object in caller storage |
 //! | `builtin/` | demo scenes as `const` data, shared by firmware and the host simulator |
 //!
 //! # Prepare once, draw per frame
@@ -49,15 +49,17 @@
 //!   where `255·I` falls within rounding of an integer.
 //! - [`Material::Gouraud`]: `I` is evaluated at the vertices (vertex
 //!   normals; for a mesh without them the raster path prepares
-//!   area-weighted ones, the ray path uses the face normal) and interpolated
-//!   linearly in screen space. The ray path finds the triangle by casting,
-//!   then evaluates the raster path's 16.16 intensity plane over the
-//!   triangle's projected 28.4 vertices at the pixel centre (falling back
-//!   to the hit's barycentric weights if a vertex cannot be projected).
+//!   area-weighted ones, the ray path uses the face normal). The raster
+//!   path interpolates it linearly in screen space (16.16 varyings); the
+//!   ray path takes the hit's barycentric weights, `I = u·I_A + v·I_B +
+//!   w·I_C`, which is linear in object space (perspective-correct). Both
+//!   then quantise and scale the colour the same way.
 //! - [`Material::Texture`]: unlit nearest-texel sampling, repeating a
-//!   power-of-two texture. The ray path is always perspective-correct
-//!   (the raster path's exact `u·q / q` planes, evaluated the same way);
-//!   the raster path follows [`TextureMode`].
+//!   power-of-two texture. The ray path interpolates the vertices'
+//!   texture coordinates with the hit's barycentric weights (for a planar
+//!   triangle, the texture-mapping vectors' value at the hit point), so it
+//!   is always perspective-correct; the raster path follows
+//!   [`TextureMode`]. Both fetch with [`TextureData::sample`].
 //! - Spheres ([`SceneSphere`]) are drawn by the ray path only, lit per hit
 //!   with the sphere normal.
 //!
@@ -73,8 +75,10 @@ mod shade;
 pub mod builtin;
 
 pub use prepared::{MeshError, Normals, PreparedMesh, PreparedObject, Storage, storage_len};
+#[cfg(feature = "grid")]
+pub use ray::{RayBuffers, RayStorage, RayTriangle};
 #[cfg(feature = "raycast")]
-pub use ray::RayScene;
+pub use ray::{RaySample, RayScene};
 pub use render::{Frame, RasterStats, Renderer};
 
 /// How many objects, and how many spheres, the ray path holds (its
@@ -405,6 +409,16 @@ pub enum SceneError {
         /// Object index in the scene.
         object: usize,
     },
+    /// A slice of the ray path's grid storage is shorter than
+    /// `Scene::ray_storage` says (feature `grid`).
+    RayStorage {
+        /// Which slice: `triangles`, `cells` or `items`.
+        what: &'static str,
+        /// Elements needed.
+        needed: usize,
+        /// Elements given.
+        given: usize,
+    },
     /// More objects than the ray path's capacity [`MAX_RAY_OBJECTS`].
     TooManyObjects,
     /// A pose cannot be inverted (ray path), or a value is not finite.
@@ -462,6 +476,14 @@ impl fmt::Display for SceneError {
                     "object {object}: textured mesh has no texture coordinates"
                 )
             }
+            Self::RayStorage {
+                what,
+                needed,
+                given,
+            } => write!(
+                f,
+                "ray storage: {what} holds {given} entries, the scene needs {needed}"
+            ),
             Self::TooManyObjects => {
                 write!(f, "more than {MAX_RAY_OBJECTS} objects for the ray path")
             }

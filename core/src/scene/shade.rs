@@ -1,6 +1,7 @@
 //! The material model shared by both paths (see the module docs): the
-//! same functions, on the same quantised inputs, so flat-shaded triangles
-//! get bit-identical colours from the raster and the ray path.
+//! light, the intensity quantisation and the exact face directions of the
+//! quantised meshes. Interpolation is each path's own: the raster path's
+//! varyings live in `pipeline::vertex`, the ray path shades at the hit.
 
 // Each helper serves the raster path's Gouraud or texture stage, the ray
 // path, or both; a build without some of those stages leaves some unused.
@@ -22,25 +23,6 @@ pub fn quantise_intensity<S: Scalar>(i: S) -> u8 {
         .to_subpixel(16)
         .unwrap_or(0);
     (v >> 16).clamp(0, 255) as u8
-}
-
-/// Intensity `[0, 1]` → the raster path's Gouraud varying: 0..=255 in
-/// 16.16 (as `pipeline::Intensity` converts it).
-pub(crate) fn intensity_varying<S: Scalar>(i: S) -> i32 {
-    (i.clamp_to(S::ZERO, S::ONE) * S::from_i32(255))
-        .to_subpixel(16)
-        .unwrap_or(0)
-}
-
-/// Texels → 16.16 saturated to ±2^29, as `pipeline::Uv` converts them.
-pub(crate) fn texel_varying<S: Scalar>(u: S) -> i32 {
-    let lim = 1 << 29;
-    match u.to_subpixel(16) {
-        Some(v) => v.clamp(-lim, lim - 1),
-        None if u > S::ZERO => lim - 1,
-        None if u < S::ZERO => -lim,
-        None => 0,
-    }
 }
 
 /// The light in scalar `S`.
@@ -203,8 +185,8 @@ pub(crate) fn uv<S: Scalar>(mesh: &MeshData<'_>, k: u16) -> (S, S) {
     (S::from_i32(t[0] as i32), S::from_i32(t[1] as i32))
 }
 
-/// A texel coordinate → integer texel, as the raster path's varyings do
-/// it (16.16, then the integer part, i.e. floor).
+/// A texel coordinate → integer texel: 16.16, then the integer part
+/// (floor), as the texture stage's coordinates are read.
 pub(crate) fn texel<S: Scalar>(u: S) -> i32 {
     match u.to_subpixel(16) {
         Some(v) => v >> 16,

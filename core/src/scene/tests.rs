@@ -206,3 +206,101 @@ fn strip_rendering_with_bands_equals_the_whole_frame() {
         .unwrap();
     }
 }
+
+fn grid_ray_image<S: Scalar>(scene: &Scene<'_>, w: u16, h: u16) -> std::vec::Vec<Color> {
+    let view = scene.view::<S>(w, h).unwrap();
+    let need = scene.ray_storage();
+    let mut tris = vec![RayTriangle::EMPTY; need.triangles];
+    let (mut cells, mut items) = (vec![0u32; need.cells], vec![0u32; need.items]);
+    let buffers = RayBuffers {
+        triangles: &mut tris,
+        cells: &mut cells,
+        items: &mut items,
+    };
+    let rs = RayScene::with_grid(scene, &view, buffers).unwrap();
+    for (o, r) in rs.grid_resolutions().enumerate() {
+        let n = scene.objects[o].mesh.triangles.len();
+        let r = r.expect("every object with triangles has a grid");
+        let cells = r.iter().product::<usize>();
+        assert!(
+            cells >= 1 && cells <= 2 * n,
+            "{} object {o}: {r:?}",
+            scene.name
+        );
+    }
+    let mut px = vec![Color::new(0, 0, 0); w as usize * h as usize];
+    for (j, row) in px.chunks_mut(w as usize).enumerate() {
+        rs.render_row(j as u16, row);
+    }
+    px
+}
+
+#[test]
+fn grid_gives_the_object_loops_image_bit_for_bit() {
+    // The grid only replaces the loop over an object's triangles (same
+    // space, same test, same ties), so the images must be identical.
+    fn check<S: Scalar>() {
+        for scene in builtin::ALL {
+            let a = ray_image::<S>(scene, 48, 36);
+            let b = grid_ray_image::<S>(scene, 48, 36);
+            let diff = a.iter().zip(&b).filter(|(p, q)| p != q).count();
+            assert_eq!(diff, 0, "{}: {diff} pixels differ", scene.name);
+        }
+    }
+    check::<f32>();
+    check::<I16F16>();
+}
+
+#[test]
+fn bunny_grid_is_fine_and_storage_is_const() {
+    const NEED: RayStorage = builtin::BUNNY.ray_storage();
+    assert_eq!(NEED.triangles, 2 + builtin::BUNNY_MESH.triangles.len());
+    let view = builtin::BUNNY.view::<f32>(32, 24).unwrap();
+    let mut tris = [RayTriangle::EMPTY; NEED.triangles];
+    let (mut cells, mut items) = ([0u32; NEED.cells], vec![0u32; NEED.items]);
+    let rs = RayScene::with_grid(
+        &builtin::BUNNY,
+        &view,
+        RayBuffers {
+            triangles: &mut tris,
+            cells: &mut cells,
+            items: &mut items,
+        },
+    )
+    .unwrap();
+    let r: std::vec::Vec<_> = rs.grid_resolutions().collect();
+    // The bunny's own grid, not one coarsened to a few cells.
+    let bunny = r[1].unwrap();
+    assert!(bunny.iter().product::<usize>() > 3000, "{r:?}");
+}
+
+#[test]
+fn short_ray_storage_is_a_clear_error() {
+    let scene = &builtin::BUNNY;
+    let view = scene.view::<f32>(8, 8).unwrap();
+    let need = scene.ray_storage();
+    for (k, what) in ["triangles", "cells", "items"].into_iter().enumerate() {
+        let less = |j: usize, n: usize| if j == k { n - 1 } else { n };
+        let mut tris = vec![RayTriangle::EMPTY; less(0, need.triangles)];
+        let mut cells = vec![0u32; less(1, need.cells)];
+        let mut items = vec![0u32; less(2, need.items)];
+        let needed = [need.triangles, need.cells, need.items][k];
+        let got = RayScene::with_grid(
+            scene,
+            &view,
+            RayBuffers {
+                triangles: &mut tris,
+                cells: &mut cells,
+                items: &mut items,
+            },
+        );
+        assert_eq!(
+            got.err(),
+            Some(SceneError::RayStorage {
+                what,
+                needed,
+                given: needed - 1
+            })
+        );
+    }
+}

@@ -1,57 +1,113 @@
 //! The ray path: one ray per pixel centre, nearest hit over the scene's
-//! meshes (watertight triangle test in object space) and spheres, shaded
-//! with the same material model as the raster path.
+//! meshes (watertight triangle test) and spheres, shaded **at the hit**
+//! with the material model the raster path uses too (colour ramp, texel
+//! fetch), but none of its interpolation.
+//!
+//! Each ray is carried into each object's space (the inverse pose) and
+//! tested against the object's box; then the nearest triangle of the
+//! object is found by one of two searches, which give the same triangle
+//! and the same hit bit for bit (same space, same watertight test, ties
+//! to the lower index; tested):
+//! - [`RayScene::new`] (no storage, no `grid` feature needed): every
+//!   triangle of the object;
+//! - [`RayScene::with_grid`] (feature `grid`): a uniform
+//!   [`Grid`](crate::ray::Grid) per object, built once in caller storage
+//!   (`grid.rs`).
+//!
+//! Shading at a hit on triangle (A, B, C) with barycentric weights
+//! (u, v, w) from the watertight test:
+//! - flat: the face normal, lit ([`Material::Flat`]);
+//! - Gouraud: `I = u·I_A + v·I_B + w·I_C` from the vertex intensities,
+//!   then quantised;
+//! - texture: `(s, t) = u·uv_A + v·uv_B + w·uv_C` in texels, floored and
+//!   fetched. For a planar triangle this is exactly the texture-mapping
+//!   vectors' value at the hit point (the mapping is affine in object
+//!   space, and so is the barycentric combination), so it is
+//!   perspective-correct by construction.
+
+#[cfg(feature = "grid")]
+mod grid;
+
+#[cfg(feature = "grid")]
+pub use grid::{RayBuffers, RayStorage, RayTriangle};
 
 use super::shade::{self, Lighting};
 #[cfg(feature = "sphere")]
 use super::vec3;
 use super::{Color, MAX_RAY_OBJECTS, Material, Scene, SceneError, View};
 use crate::math::{Affine3, Mat3, Vec3};
-use crate::raster::{PERSPECTIVE_Q_BITS, SUBPIXEL_BITS, Shade, VARYING_FRAC_BITS};
+use crate::raster::Shade;
 #[cfg(feature = "sphere")]
 use crate::ray::Sphere;
-use crate::ray::{Aabb, Ray, RayCamera, ShearedRay, Triangle};
+use crate::ray::{Aabb, Ray, RayCamera, ShearedRay, Triangle, TriangleHit};
 use crate::scalar::Scalar;
 use crate::target::Target;
 
 #[derive(Clone, Copy, Debug)]
 struct RayObject<S> {
     to_object: Affine3<S>,
-    /// The raster path's object→view transform, for screen-space Gouraud.
-    to_view: Affine3<S>,
     rot: Mat3<S>,
     scale: S,
     bounds: Option<Aabb<S>>,
 }
 
 /// A scene prepared for ray casting at one image size: the ray camera,
-/// each object's inverse pose and bounding box, the spheres. Cheap to
-/// share between threads (`Sync` when `S` is); every query is `&self`.
+/// each object's inverse pose and bounding box, the spheres, and with
+/// [`Self::with_grid`] the world-space triangles in a uniform grid. Cheap
+/// to share between threads (`Sync` when `S` is); every query is `&self`.
 #[derive(Clone, Debug)]
 pub struct RayScene<'a, S> {
     scene: Scene<'a>,
     camera: RayCamera<S>,
-    projection: crate::camera::Projection<S>,
     inv_focus: S,
     objects: heapless::Vec<RayObject<S>, MAX_RAY_OBJECTS>,
     #[cfg(feature = "sphere")]
     spheres: heapless::Vec<Sphere<S>, MAX_RAY_OBJECTS>,
     light: Lighting<S>,
+    /// One entry per object after [`Self::with_grid`], none after
+    /// [`Self::new`].
+    #[cfg(feature = "grid")]
+    grids: heapless::Vec<Option<grid::ObjectGrid<'a, S>>, MAX_RAY_OBJECTS>,
 }
 
-enum HitKind<S> {
-    Triangle {
-        object: usize,
-        tri: usize,
-        w: [S; 3],
+/// What the ray through a pixel sees, before the colour is looked up:
+/// which surface, and the material model's input there. The colour is
+/// [`RayScene::color`] of it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum RaySample {
+    /// Nothing is hit: the scene's background.
+    Background,
+    /// Sphere `sphere`, lit at intensity step `level` (0..=255).
+    Sphere {
+        /// Sphere index in the scene.
+        sphere: usize,
+        /// The quantised intensity `⌊255·I⌋`.
+        level: u8,
     },
-    #[cfg(feature = "sphere")]
-    Sphere { sphere: usize, point: Vec3<S> },
+    /// A flat or Gouraud triangle of object `object`, lit at intensity
+    /// step `level` (0..=255).
+    Lit {
+        /// Object index in the scene.
+        object: usize,
+        /// The quantised intensity `⌊255·I⌋`.
+        level: u8,
+    },
+    /// A textured triangle of object `object`, showing texel
+    /// `(u, v)` (before tiling).
+    Texel {
+        /// Object index in the scene.
+        object: usize,
+        /// Texel column.
+        u: i32,
+        /// Texel row.
+        v: i32,
+    },
 }
 
 impl<'a, S: Scalar> RayScene<'a, S> {
     /// Prepares `scene` for `view` (which must use a perspective
-    /// projection).
+    /// projection), without acceleration beyond a box per object.
     ///
     /// # Errors
     /// [`Scene::validate`]'s errors; [`SceneError::RayCamera`] for a
@@ -82,7 +138,6 @@ impl<'a, S: Scalar> RayScene<'a, S> {
             objects
                 .push(RayObject {
                     to_object,
-                    to_view: view.camera.object_to_view(&pose),
                     rot: pose.angles.to_mat3(),
                     scale,
                     bounds,
@@ -104,12 +159,13 @@ impl<'a, S: Scalar> RayScene<'a, S> {
         Ok(Self {
             scene: *scene,
             camera,
-            projection: view.projection,
             inv_focus: S::ONE / focus,
             objects,
             #[cfg(feature = "sphere")]
             spheres,
             light: Lighting::new(&scene.light),
+            #[cfg(feature = "grid")]
+            grids: heapless::Vec::new(),
         })
     }
 
@@ -138,9 +194,15 @@ impl<'a, S: Scalar> RayScene<'a, S> {
     /// The colour of pixel (i, j).
     #[must_use]
     pub fn pixel(&self, i: u16, j: u16) -> Color {
+        self.color(self.pixel_sample(i, j))
+    }
+
+    /// What the ray of pixel (i, j) sees ([`Self::pixel`] is its colour).
+    #[must_use]
+    pub fn pixel_sample(&self, i: u16, j: u16) -> RaySample {
         match self.pixel_ray(i, j) {
-            Some(ray) => self.trace_at(&ray, Some((i, j))),
-            None => self.scene.background,
+            Some(ray) => self.sample(&ray),
+            None => RaySample::Background,
         }
     }
 
@@ -175,12 +237,76 @@ impl<'a, S: Scalar> RayScene<'a, S> {
     /// Shades the nearest hit of `ray`, or the background.
     #[must_use]
     pub fn trace(&self, ray: &Ray<S>) -> Color {
-        self.trace_at(ray, None)
+        self.color(self.sample(ray))
     }
 
-    fn trace_at(&self, ray: &Ray<S>, pixel: Option<(u16, u16)>) -> Color {
-        let mut best_t: Option<S> = None;
-        let mut best: Option<HitKind<S>> = None;
+    /// The colour the material model gives `sample` (the background for a
+    /// sample that names no surface of this scene).
+    #[must_use]
+    pub fn color(&self, sample: RaySample) -> Color {
+        let bg = self.scene.background;
+        match sample {
+            RaySample::Background => bg,
+            RaySample::Sphere { sphere, level } => self
+                .scene
+                .spheres
+                .get(sphere)
+                .map_or(bg, |s| s.color.scale(level)),
+            RaySample::Lit { object, level } => match self.scene.objects.get(object) {
+                Some(o) => match o.material {
+                    Material::Flat(c) | Material::Gouraud(c) => c.scale(level),
+                    Material::Texture { .. } => bg,
+                },
+                None => bg,
+            },
+            RaySample::Texel { object, u, v } => match self.scene.objects.get(object) {
+                Some(o) => match o.material {
+                    Material::Texture { texture, .. } => texture.sample(u, v),
+                    _ => bg,
+                },
+                None => bg,
+            },
+        }
+    }
+
+    /// What `ray` sees: its nearest hit with `t > 0`, shaded.
+    #[must_use]
+    pub fn sample(&self, ray: &Ray<S>) -> RaySample {
+        let tri = self.nearest_by_object(ray);
+        #[cfg(feature = "sphere")]
+        if let Some(s) = self.nearer_sphere(ray, tri.map(|(_, _, h)| h.t)) {
+            return s;
+        }
+        match tri {
+            Some((object, t, h)) => self.shade_triangle(object, t, &h),
+            None => RaySample::Background,
+        }
+    }
+
+    /// The nearest sphere hit strictly nearer than `best_t` (triangles win
+    /// ties), lit with the sphere normal.
+    #[cfg(feature = "sphere")]
+    fn nearer_sphere(&self, ray: &Ray<S>, mut best_t: Option<S>) -> Option<RaySample> {
+        let mut hit: Option<(usize, S)> = None;
+        for (k, s) in self.spheres.iter().enumerate() {
+            if let Some(t) = s.intersect(ray, S::ZERO) {
+                if best_t.is_none_or(|b| t < b) {
+                    best_t = Some(t);
+                    hit = Some((k, t));
+                }
+            }
+        }
+        let (k, t) = hit?;
+        let s = self.spheres.get(k)?;
+        let level = shade::quantise_intensity(self.light.intensity(s.normal_at(ray.at(t))));
+        Some(RaySample::Sphere { sphere: k, level })
+    }
+
+    /// The nearest triangle hit, (object, triangle in the object's mesh,
+    /// hit with its barycentric weights): every object in its own space,
+    /// its box first, then its grid or every triangle.
+    fn nearest_by_object(&self, ray: &Ray<S>) -> Option<(usize, usize, TriangleHit<S>)> {
+        let mut best: Option<(usize, usize, TriangleHit<S>)> = None;
         for (o, (obj, desc)) in self.objects.iter().zip(self.scene.objects).enumerate() {
             let Ok(local) = Ray::new(
                 obj.to_object.transform_point3(ray.origin()),
@@ -188,12 +314,20 @@ impl<'a, S: Scalar> RayScene<'a, S> {
             ) else {
                 continue;
             };
+            let best_t = best.map_or(S::MAX, |(_, _, h)| h.t);
             if let Some(b) = &obj.bounds {
-                if b.intersect_range(&local, S::ZERO, best_t.unwrap_or(S::MAX))
-                    .is_none()
-                {
+                if b.intersect_range(&local, S::ZERO, best_t).is_none() {
                     continue;
                 }
+            }
+            #[cfg(feature = "grid")]
+            if let Some(Some(g)) = self.grids.get(o) {
+                if let Some((t_i, h)) = g.nearest(&local) {
+                    if best.is_none_or(|(_, _, b)| h.t < b.t) {
+                        best = Some((o, t_i, h));
+                    }
+                }
+                continue;
             }
             let Some(sheared) = ShearedRay::new(&local) else {
                 continue;
@@ -205,185 +339,48 @@ impl<'a, S: Scalar> RayScene<'a, S> {
                 else {
                     continue;
                 };
-                if best_t.is_none_or(|b| h.t < b) {
-                    best_t = Some(h.t);
-                    best = Some(HitKind::Triangle {
-                        object: o,
-                        tri: t_i,
-                        w: [h.u, h.v, h.w],
-                    });
+                if best.is_none_or(|(_, _, b)| h.t < b.t) {
+                    best = Some((o, t_i, h));
                 }
             }
         }
-        #[cfg(feature = "sphere")]
-        for (k, s) in self.spheres.iter().enumerate() {
-            if let Some(t) = s.intersect(ray, S::ZERO) {
-                if best_t.is_none_or(|b| t < b) {
-                    best_t = Some(t);
-                    best = Some(HitKind::Sphere {
-                        sphere: k,
-                        point: ray.at(t),
-                    });
-                }
-            }
-        }
-        match best {
-            None => self.scene.background,
-            #[cfg(feature = "sphere")]
-            Some(HitKind::Sphere { sphere, point }) => {
-                let (Some(s), Some(desc)) =
-                    (self.spheres.get(sphere), self.scene.spheres.get(sphere))
-                else {
-                    return self.scene.background;
-                };
-                let q = shade::quantise_intensity(self.light.intensity(s.normal_at(point)));
-                desc.color.scale(q)
-            }
-            Some(HitKind::Triangle { object, tri, w }) => {
-                self.shade_triangle(object, tri, w, pixel)
-            }
-        }
+        best
     }
 
-    fn shade_triangle(
-        &self,
-        object: usize,
-        tri: usize,
-        w: [S; 3],
-        pixel: Option<(u16, u16)>,
-    ) -> Color {
+    /// The material model at a hit on triangle `tri` of object `object`.
+    fn shade_triangle(&self, object: usize, tri: usize, h: &TriangleHit<S>) -> RaySample {
         let (Some(obj), Some(desc)) = (self.objects.get(object), self.scene.objects.get(object))
         else {
-            return self.scene.background;
+            return RaySample::Background;
         };
         let mesh = desc.mesh;
         let Some(&t) = mesh.triangles.get(tri) else {
-            return self.scene.background;
+            return RaySample::Background;
         };
+        let w = [h.u, h.v, h.w];
         match desc.material {
-            Material::Flat(color) => {
-                let q = shade::face_normal(mesh, &obj.rot, t)
+            Material::Flat(_) => {
+                let level = shade::face_normal(mesh, &obj.rot, t)
                     .map_or(0, |n| shade::quantise_intensity(self.light.intensity(n)));
-                color.scale(q)
+                RaySample::Lit { object, level }
             }
-            Material::Gouraud(color) => {
+            Material::Gouraud(_) => {
                 let i = shade::vertex_intensities(mesh, &obj.rot, &self.light, t);
-                let screen = pixel.and_then(|(px, py)| {
-                    let p = t.map(|k| {
-                        let v = obj
-                            .to_view
-                            .transform_point3(shade::position(mesh, obj.scale, k));
-                        self.projection.project(v).and_then(|(s, _)| {
-                            Some((
-                                s.x.to_subpixel(SUBPIXEL_BITS)?,
-                                s.y.to_subpixel(SUBPIXEL_BITS)?,
-                            ))
-                        })
-                    });
-                    let c = (px as i32 * 16 + 8, py as i32 * 16 + 8);
-                    screen_lerp([p[0]?, p[1]?, p[2]?], c, i.map(shade::intensity_varying))
-                });
-                match screen {
-                    Some(v) => color.scale((v >> VARYING_FRAC_BITS).clamp(0, 255) as u8),
-                    None => {
-                        let v = i[0] * w[0] + i[1] * w[1] + i[2] * w[2];
-                        color.scale(shade::quantise_intensity(v))
-                    }
-                }
+                let level = shade::quantise_intensity(i[0] * w[0] + i[1] * w[1] + i[2] * w[2]);
+                RaySample::Lit { object, level }
             }
-            Material::Texture { texture, .. } => {
+            Material::Texture { .. } => {
                 let uv = t.map(|k| shade::uv::<S>(mesh, k));
-                if let Some(c) =
-                    pixel.and_then(|(px, py)| self.perspective_uv(obj, mesh, t, uv, px, py))
-                {
-                    return texture.sample(c.0, c.1);
-                }
                 let u = uv[0].0 * w[0] + uv[1].0 * w[1] + uv[2].0 * w[2];
                 let v = uv[0].1 * w[0] + uv[1].1 * w[1] + uv[2].1 * w[2];
-                texture.sample(shade::texel(u), shade::texel(v))
+                RaySample::Texel {
+                    object,
+                    u: shade::texel(u),
+                    v: shade::texel(v),
+                }
             }
         }
     }
-}
-
-impl<S: Scalar> RayScene<'_, S> {
-    /// The texel the raster path's exact perspective mapping reads at
-    /// pixel (px, py): the planes of `u·q`, `v·q` (16.16) and `q = near/z`
-    /// (8.24) over the 28.4 vertices, divided as the shader divides
-    /// (`raster::persp_div::divide`), floored.
-    fn perspective_uv(
-        &self,
-        obj: &RayObject<S>,
-        mesh: &super::MeshData<'_>,
-        t: [u16; 3],
-        uv: [(S, S); 3],
-        px: u16,
-        py: u16,
-    ) -> Option<(i32, i32)> {
-        let inv_near = S::ONE.checked_div(S::from_f32(self.scene.near))?;
-        let mut p = [(0, 0); 3];
-        let mut vs = [[0i32; 3]; 3];
-        for c in 0..3 {
-            let v = obj
-                .to_view
-                .transform_point3(shade::position(mesh, obj.scale, t[c]));
-            let (s, depth) = self.projection.project(v)?;
-            p[c] = (
-                s.x.to_subpixel(SUBPIXEL_BITS)?,
-                s.y.to_subpixel(SUBPIXEL_BITS)?,
-            );
-            let q = (depth / inv_near).clamp_to(S::ZERO, S::ONE);
-            let qv = q.to_subpixel(PERSPECTIVE_Q_BITS).unwrap_or(1).max(1);
-            vs[0][c] = shade::texel_varying(uv[c].0 * q);
-            vs[1][c] = shade::texel_varying(uv[c].1 * q);
-            vs[2][c] = qv;
-        }
-        let range = (-(1 << 29), (1 << 29) - 1);
-        let centre = (px as i32 * 16 + 8, py as i32 * 16 + 8);
-        let uq = screen_lerp_in(p, centre, vs[0], range)?;
-        let vq = screen_lerp_in(p, centre, vs[1], range)?;
-        let q = screen_lerp_in(p, centre, vs[2], range)?;
-        // The raster shader's divide, so both paths read the same texel.
-        let (u, v) = crate::raster::persp_div::divide(&[uq, vq, q]);
-        let texel =
-            |x: i64| (x >> VARYING_FRAC_BITS).clamp(i32::MIN as i64, i32::MAX as i64) as i32;
-        Some((texel(u), texel(v)))
-    }
-}
-
-/// The value at 28.4 point `c` of the plane through values `a` at the
-/// 28.4 vertices `p` (linear in screen space, as the raster path's
-/// Gouraud varyings); `None` for a zero-area triangle.
-fn screen_lerp(p: [(i32, i32); 3], c: (i32, i32), a: [i32; 3]) -> Option<i32> {
-    screen_lerp_in(p, c, a, (0, (256 << VARYING_FRAC_BITS) - 1))
-}
-
-fn screen_lerp_in(
-    p: [(i32, i32); 3],
-    c: (i32, i32),
-    a: [i32; 3],
-    (lo, hi): (i32, i32),
-) -> Option<i32> {
-    let (x0, y0) = (p[0].0 as i128, p[0].1 as i128);
-    let e1 = (p[1].0 as i128 - x0, p[1].1 as i128 - y0);
-    let e2 = (p[2].0 as i128 - x0, p[2].1 as i128 - y0);
-    let area = e1.0 * e2.1 - e1.1 * e2.0;
-    if area == 0 {
-        return None;
-    }
-    let da1 = a[1] as i128 - a[0] as i128;
-    let da2 = a[2] as i128 - a[0] as i128;
-    let nx = da1 * e2.1 - da2 * e1.1;
-    let ny = da2 * e1.0 - da1 * e2.0;
-    let num = nx * (c.0 as i128 - x0) + ny * (c.1 as i128 - y0);
-    // Round to nearest, as the raster path's gradients do.
-    let d = if (num < 0) == (area < 0) {
-        (num + area / 2) / area
-    } else {
-        (num - area / 2) / area
-    };
-    let v = a[0] as i128 + d;
-    Some(v.clamp(lo as i128, hi as i128) as i32)
 }
 
 /// The object-space box around the positions, one step wider on every

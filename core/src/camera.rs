@@ -21,6 +21,7 @@ use core::fmt;
 
 /// Why a camera could not be built.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum CameraError {
     /// An input is NaN or ±∞.
     NonFinite,

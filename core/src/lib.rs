@@ -121,7 +121,7 @@
 //! | `gouraud` | `raster::Gouraud`; Gouraud materials in [`scene::Renderer`] | |
 //! | `texture` | `texture`, the affine texture shaders; affine texture materials | |
 //! | `perspective` | `raster::PerspectiveTexture`; perspective and `Auto` texture materials | `texture` |
-//! | `clip-far` | clipping at the far plane (without it, geometry beyond `far` is drawn, its depth key saturated at the far value) | |
+//! | `clip-far` | clipping at the far plane when asked ([`Pipeline::with_far_clip`](pipeline::Pipeline::with_far_clip), [`Renderer::with_far_clip`](scene::Renderer::with_far_clip)); without it geometry beyond `far` is drawn, its depth key saturated at the far value | |
 //! | `raycast` | `ray`, `scene::RayScene` | |
 //! | `sphere` | `ray::Sphere`; spheres in `scene::RayScene` | `raycast` |
 //! | `grid` | `ray::Grid` | `raycast` |
@@ -143,8 +143,12 @@
 //! normals for the bunny); `depth`, `clip-far`, `grid` and `column` were not
 //! measured on their own.
 //!
-//! A combination that cannot work (e.g. `perspective` without `texture`)
-//! is a `compile_error!` naming the missing feature. A scene whose material
+//! Features are additive: each adds code and API and never changes what
+//! existing calls do; a behaviour is chosen by an argument (e.g. far-plane
+//! clipping by [`Pipeline::with_far_clip`](pipeline::Pipeline::with_far_clip)).
+//! A feature that needs another turns it on (`perspective` turns on
+//! `texture`; `sphere`, `grid` and `column` turn on `raycast`; `column`
+//! turns on `texture` too). A scene whose material
 //! needs a stage that is left out is refused at run time with
 //! [`SceneError::FeatureDisabled`](scene::SceneError::FeatureDisabled),
 //! before anything is drawn.
@@ -152,19 +156,6 @@
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs, missing_debug_implementations)]
-
-#[cfg(all(feature = "perspective", not(feature = "texture")))]
-compile_error!(
-    "feature `perspective` needs feature `texture` (it adds perspective-correct texture shaders)"
-);
-#[cfg(all(feature = "sphere", not(feature = "raycast")))]
-compile_error!("feature `sphere` needs feature `raycast` (spheres are drawn by the ray path only)");
-#[cfg(all(feature = "grid", not(feature = "raycast")))]
-compile_error!("feature `grid` needs feature `raycast` (the grid accelerates ray queries)");
-#[cfg(all(feature = "column", not(feature = "raycast")))]
-compile_error!("feature `column` needs feature `raycast` (the column caster is a ray caster)");
-#[cfg(all(feature = "column", not(feature = "texture")))]
-compile_error!("feature `column` needs feature `texture` (the column caster draws textured walls)");
 
 #[cfg(test)]
 extern crate std;

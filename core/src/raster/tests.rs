@@ -253,7 +253,10 @@ fn sliver_with_extreme_varyings_stays_in_range() {
     assert_eq!(out, FillOutcome::Drawn);
     let drawn: Vec<char> = t.px.iter().copied().filter(|&c| c != '.').collect();
     assert!(!drawn.is_empty(), "the sliver drew nothing");
-    assert!(drawn.iter().all(|c| ['a', 'x', 'b'].contains(c)), "{drawn:?}");
+    assert!(
+        drawn.iter().all(|c| ['a', 'x', 'b'].contains(c)),
+        "{drawn:?}"
+    );
 
     // A thin (two-pixel) sliver whose intensity plane runs four ramps
     // beyond both ends inside it: the span set-up must clamp, so both ends

@@ -318,7 +318,9 @@ pub struct Scene<'a> {
     pub projection: ProjectionSpec,
     /// Near clip distance (view z).
     pub near: f32,
-    /// Far clip distance (view z).
+    /// Far distance (view z): the end of the depth range. Geometry beyond
+    /// it is drawn with the farthest depth key, unless the renderer clips
+    /// there ([`Renderer::with_far_clip`], feature `clip-far`).
     pub far: f32,
     /// The light.
     pub light: Light,

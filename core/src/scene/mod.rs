@@ -6,6 +6,7 @@
 //! | file | what it holds |
 //! |---|---|
 //! | `mod.rs` | the description: [`MeshData`], [`Material`], [`SceneObject`], [`SceneSphere`], [`Light`], [`CameraSpec`], [`ProjectionSpec`], [`Scene`]; [`SceneError`] |
+//! | `build.rs` | building descriptions by hand: [`Scene::new`] with defaults, [`quantize_positions`] and [`quantize_normals`] at compile time |
 //! | `prepared.rs` | the prepared form, made once: [`PreparedMesh`] (positions and normals in the render scalar), [`PreparedObject`], [`Scene::prepare`] into caller storage |
 //! | `render.rs` | the raster path per frame: [`Renderer::project`] (each vertex once) and [`Frame::draw`] (per band) |
 //! | `shade.rs` | the one material model both paths use |
@@ -64,6 +65,7 @@
 //! Both paths sample at pixel centres (i + ½, j + ½) and use the nearest
 //! surface, so their images can be compared pixel by pixel.
 
+mod build;
 mod prepared;
 #[cfg(feature = "raycast")]
 mod ray;
@@ -72,6 +74,7 @@ mod shade;
 
 pub mod builtin;
 
+pub use build::{QuantizedPositions, quantize_normals, quantize_positions};
 pub use prepared::{MeshError, Normals, PreparedMesh, PreparedObject, Storage, storage_len};
 #[cfg(feature = "raycast")]
 pub use ray::RayScene;

@@ -168,11 +168,12 @@ mod tests {
             t.fill_solid(0, 0, 4, c);
         }
         assert!(bytes.iter().all(|b| *b == [lo, hi]), "{bytes:x?}");
-        let fb = Framebuffer::new(&mut bytes, 4, 1, 4).unwrap();
-        let mut t = Rgb565Encoder::new(fb, ByteOrder::BigEndian);
-        t.fill_with(0, 1, 1, || c);
-        assert_eq!(t.order(), ByteOrder::BigEndian);
-        drop(t);
+        {
+            let fb = Framebuffer::new(&mut bytes, 4, 1, 4).unwrap();
+            let mut t = Rgb565Encoder::new(fb, ByteOrder::BigEndian);
+            t.fill_with(0, 1, 1, || c);
+            assert_eq!(t.order(), ByteOrder::BigEndian);
+        }
         assert_eq!(bytes[1], [hi, lo]);
         assert_eq!(bytes[0], [lo, hi]);
     }

@@ -21,6 +21,7 @@ use core::fmt;
 
 /// Why a camera could not be built.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum CameraError {
     /// An input is NaN or ±∞.
     NonFinite,
@@ -71,6 +72,35 @@ impl core::error::Error for CameraError {
 }
 
 /// A camera: the world→view transform plus the eye position.
+///
+/// Four ways to build one, all giving the same view here: an eye at
+/// (0, 0, 5) looking down −Z with +Y up. View space has x right, y down
+/// and z forward, so the world origin lands 5 in front of the eye.
+///
+/// ```
+/// use sightline::camera::Camera;
+/// use sightline::math::Vec3;
+/// use sightline::transform::Euler;
+///
+/// let eye = Vec3::new(0.0f32, 0.0, 5.0);
+/// let angles = Camera::from_angles(eye, Euler::new(0.0, 0.0, 0.0));
+/// let look = Camera::look_at(eye, Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0)).unwrap();
+/// let (right, down, fwd) = (Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, -1.0, 0.0), Vec3::new(0.0, 0.0, -1.0));
+/// let ortho = Camera::from_orthonormal(eye, right, down, fwd).unwrap();
+/// // General vectors (here a scaled, sheared frame) are inverted by the
+/// // solver, which reports its diagnostics too.
+/// let (general, diag) = Camera::from_vectors(eye, right * 2.0, down + right, fwd).unwrap();
+/// assert!(diag.rcond > 0.1);
+///
+/// let p = Vec3::new(0.0, 1.0, 0.0); // one unit above the origin
+/// for cam in [angles, look, ortho] {
+///     let v = cam.world_to_view().transform_point3(p);
+///     assert!((v - Vec3::new(0.0, -1.0, 5.0)).length() < 1e-6, "{v:?}");
+/// }
+/// // With u = 2·right, v = down + right: p − eye = x·u + y·v + z·w.
+/// let v = general.world_to_view().transform_point3(p);
+/// assert!((v - Vec3::new(0.5, -1.0, 5.0)).length() < 1e-6, "{v:?}");
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera<S> {
     world_to_view: Affine3<S>,

@@ -39,6 +39,7 @@ use core::fmt;
 
 /// Why texture-mapping vectors could not be recovered.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum MappingError {
     /// Fewer than three vertices, or position and texture-coordinate
     /// slices of different lengths.

@@ -71,6 +71,7 @@ fn run<T: Scalar>(input: &Input) {
             );
             return;
         }
+        Err(e) => panic!("{}: unexpected sphere error {e:?}", T::NAME),
     };
     let q: sightline::math::Vec3<T> = common::v3(input.origin);
     let d = match input.aim {

@@ -1,10 +1,11 @@
 //! Host half of the host/MCU bit-identity check.
 //!
 //! `tests/mcu/src/kernels.rs` is compiled here and into the Cortex-M
-//! firmware. The firmware's `hash` command prints FNV-1a of its I16F16
-//! results and `tests/mcu/run` requires it to equal `FX_HASH_EXPECTED`; this
-//! test requires the host to produce the same value, so fixed-point results
-//! are bit-identical on x86-64, ARMv6-M and ARMv7E-M.
+//! firmware. The firmware's `hash` command prints FNV-1a of its I16F16 and
+//! f32 results and `tests/mcu/run` requires them to equal
+//! `FX_HASH_EXPECTED` and `F32_HASH_EXPECTED`; this test requires the host
+//! to produce the same values, so results are bit-identical on x86-64,
+//! ARMv6-M and ARMv7E-M.
 
 #[allow(dead_code)]
 #[path = "../mcu/src/kernels.rs"]
@@ -23,12 +24,18 @@ fn fixed_point_results_hash_as_on_the_mcu() {
     );
 }
 
-/// Not a requirement (float results may legitimately differ across
-/// libm/FPU paths), but printed for comparison with the firmware's
-/// `hash f32` line: `cargo test -p sightline-tests --test mcu_hash -- --nocapture`.
+/// f32 results are bit-identical across targets too (see
+/// `kernels::F32_HASH_EXPECTED`): the firmware's `hash f32` line must give
+/// the same value on both Cortex-M targets.
 #[test]
-fn print_f32_hash() {
-    println!("hash f32 {:#018x}", kernels::hash_results::<f32>());
+fn f32_results_hash_as_on_the_mcu() {
+    let h = kernels::hash_results::<f32>();
+    assert_eq!(
+        h,
+        kernels::F32_HASH_EXPECTED,
+        "host f32 hash {h:#018x} differs from the expected (MCU) value {:#018x}",
+        kernels::F32_HASH_EXPECTED
+    );
 }
 
 #[test]

@@ -40,6 +40,7 @@ pub type ClippedPolygon<S, A> = heapless::Vec<Vertex<S, A>, MAX_CLIPPED_VERTICES
 
 /// Why a polygon could not be clipped.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum ClipError {
     /// A coordinate or attribute is NaN or ±∞.
     NonFinite,

@@ -87,7 +87,7 @@ impl<S: Scalar> Pipeline<S> {
         if !(v.pos.is_finite() && v.attr.is_finite()) {
             return MeshVertex::default();
         }
-        // The depth planes (near, and far with `clip-far`) are tested in
+        // The depth planes (near, and far with `with_far_clip`) are tested in
         // view space; the four side planes, for a vertex in front of them,
         // on its projection against the guard-band rectangle: one compare
         // each instead of a dot product. The two tests can disagree only

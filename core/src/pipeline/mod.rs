@@ -57,6 +57,7 @@ pub type ScreenPolygon<const K: usize> = heapless::Vec<ScreenVertex<K>, MAX_CLIP
 
 /// Why a [`Pipeline`] could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum PipelineError {
     /// A parameter is NaN or ±∞, or a plane coefficient overflows.
     NonFinite,
@@ -82,6 +83,7 @@ impl core::error::Error for PipelineError {}
 
 /// Why a polygon was not drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum DrawError {
     /// Clipping failed.
     Clip(ClipError),
@@ -168,6 +170,9 @@ pub struct Pipeline<S> {
     /// The side planes as a 28.4 screen rectangle `[x0, x1] × [y0, y1]`
     /// (viewport plus guard band), for outcodes of projected vertices.
     guard_rect: [i32; 4],
+    /// The far plane, for [`with_far_clip`](Self::with_far_clip).
+    #[cfg(feature = "clip-far")]
+    far_plane: Plane<S>,
 }
 
 impl<S: Scalar> Pipeline<S> {
@@ -262,16 +267,12 @@ impl<S: Scalar> Pipeline<S> {
                 )
             }
         };
-        // Without `clip-far`, geometry beyond `far` is not cut off: its
-        // depth keys saturate at the far value (65535).
-        #[cfg(feature = "clip-far")]
-        let frustum =
-            Frustum::from_planes(&[near_p, far_p, sides[0], sides[1], sides[2], sides[3]]);
+        // Geometry beyond `far` is not cut off unless the caller asks for
+        // it with `with_far_clip` (feature `clip-far`): its depth keys
+        // saturate at the far value (65535).
         #[cfg(not(feature = "clip-far"))]
-        let frustum = {
-            let _ = far_p;
-            Frustum::from_planes(&[near_p, sides[0], sides[1], sides[2], sides[3]])
-        };
+        let _ = far_p;
+        let frustum = Frustum::from_planes(&[near_p, sides[0], sides[1], sides[2], sides[3]]);
         // Saturating: a guard band beyond the 28.4 range only widens the
         // rectangle (the side planes stay the ones the clipper uses).
         let sub = |v: S| v.to_subpixel(SUBPIXEL_BITS).unwrap_or(i32::MAX);
@@ -285,7 +286,41 @@ impl<S: Scalar> Pipeline<S> {
             near,
             cull: Cull::None,
             guard_rect,
+            #[cfg(feature = "clip-far")]
+            far_plane: far_p,
         })
+    }
+
+    /// The same pipeline clipping at the far plane too (`on`), or not.
+    ///
+    /// A new pipeline does not clip at `far`: geometry beyond it is drawn,
+    /// with its depth key saturated at the far value, so the nearest
+    /// surface still wins. With `on`, geometry beyond `far` is cut off by
+    /// the clipper like geometry in front of `near`.
+    #[cfg(feature = "clip-far")]
+    #[must_use]
+    pub fn with_far_clip(mut self, on: bool) -> Self {
+        let p = self.frustum.planes();
+        // Planes are [near, (far,) left, right, top, bottom].
+        let sides = [
+            p[p.len() - 4],
+            p[p.len() - 3],
+            p[p.len() - 2],
+            p[p.len() - 1],
+        ];
+        self.frustum = if on {
+            Frustum::from_planes(&[p[0], self.far_plane, sides[0], sides[1], sides[2], sides[3]])
+        } else {
+            Frustum::from_planes(&[p[0], sides[0], sides[1], sides[2], sides[3]])
+        };
+        self
+    }
+
+    /// Whether the pipeline clips at the far plane (see
+    /// [`with_far_clip`](Self::with_far_clip)).
+    #[must_use]
+    pub fn clips_far(&self) -> bool {
+        self.frustum.planes().len() == 6
     }
 
     /// The same pipeline with face culling `cull` (default [`Cull::None`]).

@@ -111,11 +111,17 @@ impl<C: Copy, const K: usize> SpanShader<K> for Gouraud<'_, C> {
 
     #[inline]
     fn color(&self, v: &[i32; K]) -> C {
-        // RANGE keeps v[0] >> 16 in 0..=255; the `u8` cast only drops
-        // bits that are already zero, and a u8 index cannot miss a
-        // 256-entry array. `first()` is resolved at compile time (K is a
-        // constant).
+        // RANGE keeps v[0] >> 16 in 0..=255 (the span set-up clamps both
+        // ends); the `u8` cast only drops bits that are already zero, and a
+        // u8 index cannot miss a 256-entry array. Debug builds (and so the
+        // tests) check the range, so that a set-up fault that let a value
+        // wrap is seen instead of being hidden by the cast. `first()` is
+        // resolved at compile time (K is a constant).
         let i = v.first().map_or(0, |&i| i >> VARYING_FRAC_BITS);
+        debug_assert!(
+            (0..256).contains(&i),
+            "Gouraud intensity {i} left the ramp: span set-up did not clamp"
+        );
         self.ramp[i as u8 as usize]
     }
 }

@@ -245,7 +245,33 @@ fn sliver_with_extreme_varyings_stays_in_range() {
         ScreenVertex::new(l, l, 0, [i32::MAX]),
         ScreenVertex::new(l, l - 1, 0, [i32::MIN]),
     ];
-    fill_polygon(&mut t, &mut NoDepth, &Gouraud::new(&ramp), &poly);
+    let out = fill_polygon(&mut t, &mut NoDepth, &Gouraud::new(&ramp), &poly);
+    // `Gouraud::color` debug-asserts that every intensity it looks up lies
+    // in 0..=255, so an unclamped, wrapped value fails this test above;
+    // here the sliver must have drawn pixels, every one from the ramp's
+    // clamped ends or its middle.
+    assert_eq!(out, FillOutcome::Drawn);
+    let drawn: Vec<char> = t.px.iter().copied().filter(|&c| c != '.').collect();
+    assert!(!drawn.is_empty(), "the sliver drew nothing");
+    assert!(
+        drawn.iter().all(|c| ['a', 'x', 'b'].contains(c)),
+        "{drawn:?}"
+    );
+
+    // A thin (two-pixel) sliver whose intensity plane runs four ramps
+    // beyond both ends inside it: the span set-up must clamp, so both ends
+    // of the ramp appear and nothing else wraps in.
+    let mut t = MockTarget::new(32, 32);
+    let big = 4 * (255 << VARYING_FRAC_BITS);
+    let poly = [
+        ScreenVertex::new(sp(0.0), sp(0.0), 0, [0]),
+        ScreenVertex::new(sp(32.0), sp(32.0), 0, [big]),
+        ScreenVertex::new(sp(32.0), sp(30.0), 0, [-big]),
+    ];
+    let out = fill_polygon(&mut t, &mut NoDepth, &Gouraud::new(&ramp), &poly);
+    assert_eq!(out, FillOutcome::Drawn);
+    let drawn: Vec<char> = t.px.iter().copied().filter(|&c| c != '.').collect();
+    assert!(drawn.contains(&'a') && drawn.contains(&'b'), "{drawn:?}");
 }
 
 fn render_frame(w: u16, h: u16, polys: &[Vec<ScreenVertex<1>>], ramp: &[u8; 256]) -> Vec<u8> {

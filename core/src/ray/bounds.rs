@@ -26,6 +26,7 @@ use core::fmt;
 
 /// Why an [`Aabb`] could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum AabbError {
     /// A coordinate is NaN or ±∞.
     NonFinite,
@@ -210,6 +211,7 @@ impl<S: Scalar, P: Intersect<S>, B: BoundingVolume<S>> Intersect<S> for Bounded<
 
 /// Why a [`BoundingSphere`] could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum BoundingSphereError {
     /// A coordinate or the radius is NaN or ±∞, or the radius is negative.
     NonFinite,

@@ -126,6 +126,7 @@ impl GridMap<'_> {
 
 /// Why the column caster could not cast (see the [module docs](self#bad-input)).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum ColumnError {
     /// The map has no cells (zero width or height).
     EmptyMap,

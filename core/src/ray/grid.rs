@@ -56,6 +56,7 @@ use core::fmt;
 
 /// Why a [`Grid`] could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum GridError {
     /// No primitives, or a resolution of zero along some axis.
     Empty,

@@ -108,6 +108,7 @@ use core::fmt;
 
 /// Why a [`Ray`] could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum RayError {
     /// The origin or the direction has a NaN or infinite component.
     NonFinite,

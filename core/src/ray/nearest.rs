@@ -114,6 +114,7 @@ impl<S: Scalar> Intersect<S> for Mesh<'_, S> {
 
 /// Why an [`Object`] could not be built.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum ObjectError {
     /// The object→world transform is singular (or ill-conditioned, or
     /// overflows) and has no usable inverse.

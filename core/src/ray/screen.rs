@@ -22,6 +22,7 @@ use core::fmt;
 
 /// Why a [`RayCamera`] could not be built.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum RayCameraError {
     /// An input is NaN or ±∞.
     NonFinite,

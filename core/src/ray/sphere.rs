@@ -47,6 +47,7 @@ use core::fmt;
 
 /// Why a [`Sphere`] could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum SphereError {
     /// The centre or radius is NaN or ±∞.
     NonFinite,

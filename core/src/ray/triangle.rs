@@ -232,6 +232,7 @@ fn fixed_hit<S: Scalar>(a: [S; 3], b: [S; 3], c: [S; 3]) -> Option<TriangleHit<S
 
 /// Why a [`Mesh`] could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum MeshError {
     /// Triangle `triangle` refers to a vertex index beyond the vertex slice.
     IndexOutOfRange {

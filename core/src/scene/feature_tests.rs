@@ -1,8 +1,8 @@
 //! What a build with fewer stages does, for whatever features are on:
 //! a material whose stage is left out is refused with
 //! [`SceneError::FeatureDisabled`] before anything is drawn, flat scenes
-//! render with any feature set, and the far plane clips only with
-//! `clip-far`.
+//! render with any feature set, and the far plane clips only when the
+//! caller asks (`with_far_clip`, feature `clip-far`).
 
 use super::builtin::{BUNNY, CORRIDOR, CORRIDOR_AFFINE, CUBE};
 use super::*;
@@ -95,8 +95,8 @@ fn left_out_materials_are_refused_before_drawing() {
 }
 
 #[test]
-fn the_far_plane_clips_only_with_clip_far() {
-    let pipe = Pipeline::new(
+fn the_far_plane_clips_only_when_asked() {
+    let base = Pipeline::new(
         Projection::perspective(100.0f32, 64, 48),
         64,
         48,
@@ -108,16 +108,27 @@ fn the_far_plane_clips_only_with_clip_far() {
     // A triangle at z = 20, beyond far = 10, covering the screen centre.
     let tri = [(-5.0, -5.0), (5.0, -5.0), (0.0, 5.0)]
         .map(|(x, y)| Vertex::new(Vec3::new(x, y, 20.0f32), ()));
-    let mut px = vec![SENTINEL; 64 * 48];
-    let mut fb = Framebuffer::new(&mut px, 64, 48, 64).unwrap();
-    let r = pipe.draw_polygon(&mut fb, &mut NoDepth, &Flat(Color::new(31, 0, 0)), &tri);
-    let drawn = px.iter().filter(|&&c| c == Color::new(31, 0, 0)).count();
-    if cfg!(feature = "clip-far") {
+    let draw = |pipe: &Pipeline<f32>| {
+        let mut px = vec![SENTINEL; 64 * 48];
+        let mut fb = Framebuffer::new(&mut px, 64, 48, 64).unwrap();
+        let r = pipe.draw_polygon(&mut fb, &mut NoDepth, &Flat(Color::new(31, 0, 0)), &tri);
+        (r, px.iter().filter(|&&c| c == Color::new(31, 0, 0)).count())
+    };
+    // Whatever the features, a new pipeline draws it (features never
+    // change behaviour).
+    assert!(!base.clips_far());
+    let (r, drawn) = draw(&base);
+    assert_eq!(r, Ok(FillOutcome::Drawn));
+    assert!(drawn > 100, "{drawn}");
+    #[cfg(feature = "clip-far")]
+    {
+        let clipped = base.with_far_clip(true);
+        assert!(clipped.clips_far());
+        let (r, drawn) = draw(&clipped);
         assert_ne!(r, Ok(FillOutcome::Drawn));
         assert_eq!(drawn, 0);
-    } else {
-        assert_eq!(r, Ok(FillOutcome::Drawn));
-        assert!(drawn > 100, "{drawn}");
+        // And back.
+        assert_eq!(draw(&clipped.with_far_clip(false)), draw(&base));
     }
 }
 

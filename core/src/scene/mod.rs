@@ -6,6 +6,7 @@
 //! | file | what it holds |
 //! |---|---|
 //! | `mod.rs` | the description: [`MeshData`], [`Material`], [`SceneObject`], [`SceneSphere`], [`Light`], [`CameraSpec`], [`ProjectionSpec`], [`Scene`]; [`SceneError`] |
+//! | `build.rs` | building descriptions by hand: [`Scene::new`] with defaults, [`quantize_positions`] and [`quantize_normals`] at compile time |
 //! | `prepared.rs` | the prepared form, made once: [`PreparedMesh`] (positions and normals in the render scalar), [`PreparedObject`], [`Scene::prepare`] into caller storage |
 //! | `render.rs` | the raster path per frame: [`Renderer::project`] (each vertex once) and [`Frame::draw`] (per band) |
 //! | `shade.rs` | the one material model both paths use |
@@ -66,6 +67,7 @@
 //! Both paths sample at pixel centres (i + ½, j + ½) and use the nearest
 //! surface, so their images can be compared pixel by pixel.
 
+mod build;
 mod prepared;
 #[cfg(feature = "raycast")]
 mod ray;
@@ -74,6 +76,7 @@ mod shade;
 
 pub mod builtin;
 
+pub use build::{QuantizedPositions, quantize_normals, quantize_positions};
 pub use prepared::{MeshError, Normals, PreparedMesh, PreparedObject, Storage, storage_len};
 #[cfg(feature = "grid")]
 pub use ray::{RayBuffers, RayStorage, RayTriangle};
@@ -322,7 +325,9 @@ pub struct Scene<'a> {
     pub projection: ProjectionSpec,
     /// Near clip distance (view z).
     pub near: f32,
-    /// Far clip distance (view z).
+    /// Far distance (view z): the end of the depth range. Geometry beyond
+    /// it is drawn with the farthest depth key, unless the renderer clips
+    /// there ([`Renderer::with_far_clip`], feature `clip-far`).
     pub far: f32,
     /// The light.
     pub light: Light,

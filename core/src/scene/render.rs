@@ -11,8 +11,8 @@
 //! 3. lights it (flat shading: one dot product with the prepared face
 //!    normal), and scan-converts it.
 //!
-//! Only triangles that cross a plane of the volume (near, far with
-//! `clip-far`, or a side plane's guard band) are rebuilt in view space and
+//! Only triangles that cross a plane of the volume (near, far when
+//! [`Renderer::with_far_clip`] asks for it, or a side plane's guard band) are rebuilt in view space and
 //! go through Sutherland–Hodgman clipping.
 
 use super::prepared::{ObjectFrame, PreparedMesh, PreparedObject};
@@ -95,8 +95,9 @@ pub struct Renderer<S> {
 }
 
 impl<S: Scalar> Renderer<S> {
-    /// The camera, projection, clip volume (`scene.near`, `scene.far`),
-    /// light and background of `scene` for a `width`×`height` image.
+    /// The camera, projection, clip volume (`scene.near`; `scene.far` only
+    /// with [`with_far_clip`](Self::with_far_clip)), light and background
+    /// of `scene` for a `width`×`height` image.
     ///
     /// # Errors
     /// [`SceneError::NonFinite`] for a NaN or infinite number in the
@@ -146,6 +147,16 @@ impl<S: Scalar> Renderer<S> {
             light: Lighting::new(light),
             background,
         })
+    }
+
+    /// The same renderer clipping at the far plane too (`on`), or not
+    /// (the default: geometry beyond `far` is drawn, its depth key
+    /// saturated at the far value). See [`Pipeline::with_far_clip`].
+    #[cfg(feature = "clip-far")]
+    #[must_use]
+    pub fn with_far_clip(mut self, on: bool) -> Self {
+        self.pipeline = self.pipeline.with_far_clip(on);
+        self
     }
 
     /// Camera, projection and image size.

@@ -14,6 +14,21 @@ use embedded_graphics::primitives::Rectangle;
 /// Spans are clipped to the target's bounding box. The first error the
 /// target returns is kept (see [`DrawTargetSink::finish`]) and later spans
 /// are dropped.
+///
+/// ```
+/// use embedded_graphics::mock_display::MockDisplay;
+/// use embedded_graphics::pixelcolor::Rgb565;
+/// use embedded_graphics::prelude::*;
+/// use sightline::target::{DrawTargetSink, Target};
+///
+/// // Any display driver that implements `DrawTarget<Color = Rgb565>`.
+/// let mut display = MockDisplay::<Rgb565>::new();
+/// let mut sink = DrawTargetSink::new(&mut display);
+/// sink.fill_solid(2, 1, 3, Rgb565::RED); // row 2, columns 1..4
+/// sink.finish().unwrap();
+/// assert_eq!(display.get_pixel(Point::new(3, 2)), Some(Rgb565::RED));
+/// assert_eq!(display.get_pixel(Point::new(4, 2)), None);
+/// ```
 #[derive(Debug)]
 pub struct DrawTargetSink<'d, D: DrawTarget> {
     target: &'d mut D,

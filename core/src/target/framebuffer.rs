@@ -13,6 +13,22 @@ use super::{Rect, Target};
 /// arguments: spans and pixels outside `0..width` × `0..height` are
 /// clipped or ignored, and elements between `width` and `stride` (padding)
 /// are never written.
+///
+/// ```
+/// use sightline::target::{BufferError, Framebuffer, Target};
+///
+/// let mut pixels = [b'.'; 4 * 3];
+/// let mut fb = Framebuffer::new(&mut pixels, 4, 3, 4).unwrap();
+/// fb.fill_solid(1, -1, 3, b'#'); // clipped at the left edge
+/// fb.fill_solid(7, 0, 4, b'!'); // below the frame: ignored
+/// assert_eq!(&pixels, b"....##......");
+/// // A slice too short for the shape is refused up front.
+/// let mut small = [0u16; 5];
+/// assert_eq!(
+///     Framebuffer::new(&mut small, 4, 3, 4).err(),
+///     Some(BufferError::TooShort { needed: 12, len: 5 })
+/// );
+/// ```
 #[derive(Debug)]
 pub struct Framebuffer<'a, C> {
     buf: &'a mut [C],
@@ -108,6 +124,25 @@ impl<C: Copy> Target for Framebuffer<'_, C> {
 /// As for [`Framebuffer`]: validated once by [`Band::new`]; no method
 /// panics or writes outside the slice afterwards, including after
 /// [`Band::move_to`].
+///
+/// ```
+/// use sightline::target::{Band, Target};
+///
+/// // A 4×6 frame drawn two rows at a time through a 4×2 buffer.
+/// let mut buf = [b'.'; 4 * 2];
+/// let mut frame = Vec::new();
+/// for y0 in (0..6).step_by(2) {
+///     let mut band = Band::new(&mut buf, 4, 2, 4, y0).unwrap();
+///     band.clear(b'.');
+///     // Draw the whole frame's spans; the band keeps its own rows.
+///     for y in 0..6 {
+///         band.fill_solid(y, y % 4, 1, b'#');
+///     }
+///     frame.extend_from_slice(band.as_slice()); // here: send it to the display
+/// }
+/// let rows: Vec<&[u8]> = frame.chunks(4).collect();
+/// assert_eq!(rows, [b"#...", b".#..", b"..#.", b"...#", b"#...", b".#.."]);
+/// ```
 #[derive(Debug)]
 pub struct Band<'a, C> {
     buf: &'a mut [C],

@@ -10,6 +10,7 @@ use core::ops::Range;
 
 /// Why a caller-supplied buffer cannot be used with the given shape.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum BufferError {
     /// `stride < width`: rows would overlap.
     StrideTooSmall,

@@ -3,13 +3,14 @@
 //! The scan converter in [`raster`](crate::raster) never touches memory
 //! itself; it hands each horizontal span to a [`Target`] (tiny-skia's
 //! *blitter* split: "Blitter is responsible for actually writing pixels into
-//! memory"). Three targets are provided:
+//! memory"). These targets are provided:
 //!
 //! | target | for |
 //! |---|---|
 //! | [`Framebuffer`] | a whole frame in a caller-supplied `&mut [C]` with a stride |
 //! | [`Band`] | rows `y0..y0+rows` of a larger frame in a small buffer, for strip-by-strip rendering on small RAM |
 //! | [`DrawTargetSink`] | any embedded-graphics `DrawTarget`, written with `fill_contiguous` / `fill_solid` |
+//! | [`Rgb565Encoder`] | RGB565 into a framebuffer or band of raw `u16` words or `[u8; 2]` pairs, big- or little-endian, ready for an SPI display |
 //!
 //! All coordinates are in frame pixels (x right, y down, see the crate
 //! docs); a target reports the rectangle it can hold with
@@ -18,10 +19,12 @@
 mod draw_target;
 mod framebuffer;
 pub(crate) mod layout;
+mod rgb565;
 
 pub use draw_target::DrawTargetSink;
 pub use framebuffer::{Band, Framebuffer};
 pub use layout::BufferError;
+pub use rgb565::{ByteOrder, Rgb565Encoder, Rgb565Storage};
 
 /// A half-open pixel rectangle: columns `x0..x1`, rows `y0..y1`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]

@@ -19,6 +19,14 @@ use sightline::transform::Euler;
 /// the host computes and every target must print.
 pub const FX_HASH_EXPECTED: u64 = 0xe777_78aa_0efd_9aa0;
 
+/// FNV-1a (64-bit) over the f32 results of [`hash_results`]. The kernels
+/// use only IEEE-754 basic operations (correctly rounded on every target:
+/// SSE on x86-64, the FPU on Cortex-M4F, compiler-builtins' soft float on
+/// Cortex-M0) and libm's pure-Rust functions, and Rust never contracts
+/// `a * b + c` into a fused multiply-add, so f32 results are bit-identical
+/// too: the host and every target must give this value.
+pub const F32_HASH_EXPECTED: u64 = 0xc9a2_094e_ef04_662c;
+
 /// Inputs per kernel table; iteration `i` uses input `i % INPUTS`.
 pub const INPUTS: usize = 8;
 

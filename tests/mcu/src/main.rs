@@ -10,9 +10,9 @@
 //!   number of digits (e.g. `000256` and `000000`) so that parsing costs the
 //!   same in both runs.
 //! - `hash`: prints FNV-1a of the I16F16 and f32 results
-//!   (`hash I16F16 0x…`, `hash f32 0x…`) and fails if the I16F16 hash differs
-//!   from [`kernels::FX_HASH_EXPECTED`], which the host test checks too, or
-//!   if a `solve3x3` system fails to solve.
+//!   (`hash I16F16 0x…`, `hash f32 0x…`) and fails if either differs from
+//!   [`kernels::FX_HASH_EXPECTED`] / [`kernels::F32_HASH_EXPECTED`], which
+//!   the host test checks too, or if a `solve3x3` system fails to solve.
 //!
 //! - `frames`: renders every scene of [`frames::SCENES`] in I16F16 and f32
 //!   at 320×240 through bands and prints `frame SCENE SCALAR 0x…` (FNV-1a
@@ -127,6 +127,13 @@ fn main() -> ! {
                 hprintln!(
                     "I16F16 hash mismatch: expected {:#018x}",
                     kernels::FX_HASH_EXPECTED
+                );
+                ok = false;
+            }
+            if fl != kernels::F32_HASH_EXPECTED {
+                hprintln!(
+                    "f32 hash mismatch: expected {:#018x}",
+                    kernels::F32_HASH_EXPECTED
                 );
                 ok = false;
             }

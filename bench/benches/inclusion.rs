@@ -7,7 +7,7 @@
 //! of the projected polygon's bounding square (about 79 % inside for
 //! large n). The slab index is built once per polygon in caller storage.
 //!
-//! Run: `cargo bench -p sightline-tests --bench inclusion`
+//! Run: `cargo bench --manifest-path bench/Cargo.toml --bench inclusion`
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use sightline::math::{Vec2, Vec3};

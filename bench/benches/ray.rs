@@ -7,7 +7,7 @@
 //! full frame), so that brute force fits the shared machine's time budget.
 //! Throughput is reported per ray.
 //!
-//! Run: `cargo bench -p sightline-tests --bench ray`
+//! Run: `cargo bench --manifest-path bench/Cargo.toml --bench ray`
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use parry3d::math::{Point, Vector};

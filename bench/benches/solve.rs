@@ -2,7 +2,7 @@
 //! rcond estimate) in f32 and I16F16, against nalgebra's LU on the same
 //! system.
 //!
-//! Run: `cargo bench -p sightline-tests --bench solve`
+//! Run: `cargo bench --manifest-path bench/Cargo.toml --bench solve`
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use sightline::scalar::{I16F16, Scalar};

@@ -9,10 +9,10 @@
 //!   ratio to nalgebra, so load changes hit every variant alike.
 //!
 //! ```text
-//! cargo build --release -p sightline-tests --example solve_insn
+//! cargo build --release --manifest-path bench/Cargo.toml --example solve_insn
 //! valgrind --tool=callgrind --callgrind-out-file=/dev/null \
-//!   target/release/examples/solve_insn sightline_f32 100000
-//! target/release/examples/solve_insn time
+//!   bench/target/release/examples/solve_insn sightline_f32 100000
+//! bench/target/release/examples/solve_insn time
 //! ```
 
 use sightline::scalar::{I16F16, Scalar};

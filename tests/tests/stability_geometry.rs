@@ -34,6 +34,8 @@ fn v<S: Scalar>(x: f64, y: f64, z: f64) -> Vec3<S> {
     Vec3::new(S::from_f64(x), S::from_f64(y), S::from_f64(z))
 }
 
+/// A pipeline that clips at `far` too (these cases test the whole clip
+/// volume).
 fn pipeline<S: Scalar>(near: f64, far: f64) -> Result<Pipeline<S>, PipelineError> {
     Pipeline::new(
         Projection::perspective(S::from_f64(FOCUS), W, W),
@@ -43,6 +45,7 @@ fn pipeline<S: Scalar>(near: f64, far: f64) -> Result<Pipeline<S>, PipelineError
         S::from_f64(far),
         S::from_i32(8),
     )
+    .map(|p| p.with_far_clip(true))
 }
 
 /// Draws a flat polygon into a fresh W×W frame; returns the outcome and

@@ -234,6 +234,7 @@ impl<S: Scalar> Pipeline<S> {
             .ok_or(nf)?;
         let (o, z) = (S::ONE, S::ZERO);
         let near_p = Plane::new(Vec3::new(z, z, o), -near);
+        #[cfg(feature = "clip-far")]
         let far_p = Plane::new(Vec3::new(z, z, -o), far);
         let (sides, depth_a, depth_scale) = match projection.kind {
             ProjectionKind::Perspective { .. } => {
@@ -270,8 +271,6 @@ impl<S: Scalar> Pipeline<S> {
         // Geometry beyond `far` is not cut off unless the caller asks for
         // it with `with_far_clip` (feature `clip-far`): its depth keys
         // saturate at the far value (65535).
-        #[cfg(not(feature = "clip-far"))]
-        let _ = far_p;
         let frustum = Frustum::from_planes(&[near_p, sides[0], sides[1], sides[2], sides[3]]);
         // Saturating: a guard band beyond the 28.4 range only widens the
         // rectangle (the side planes stay the ones the clipper uses).

@@ -1,6 +1,6 @@
 //! Watertightness: rays from inside closed meshes aimed exactly at edges
 //! and vertices must hit. The plane + dominant-axis polygon method is
-//! measured on the same rays (its leak rate is printed, not asserted).
+//! measured on the same rays (its leak rate is asserted within a stated window).
 
 use super::{Rng, per_scalar, v3};
 use crate::math::Vec3;
@@ -247,6 +247,20 @@ fn closed_meshes_do_not_leak<S: Scalar>() {
         leaks.random_polygon
     );
     assert_eq!(leaks.watertight, 0, "{}: watertight mode leaked", S::NAME);
+    // The plane + inclusion method leaks at shared edges by design (the
+    // hit point is rounded onto each face's plane, then tested against
+    // that face's edges alone). Measured: 18.5 % (f32), 18.5 % (f64),
+    // 20.4 % (I16F16) of these rays; the window states that rate. Exact
+    // inclusion makes the three tests agree ray for ray, and random rays,
+    // which almost never pass within rounding of an edge, never leak.
+    let rate = 100.0 * leaks.polygon as f64 / leaks.rays as f64;
+    assert!(
+        (15.0..=25.0).contains(&rate),
+        "{}: plane + inclusion leak rate {rate:.3}% outside 15..25%",
+        S::NAME
+    );
+    assert_eq!(leaks.by_test, [leaks.polygon; 2], "{}", S::NAME);
+    assert_eq!(leaks.random_polygon, 0, "{}", S::NAME);
 }
 
 fn triangle_basics<S: Scalar>() {

@@ -150,6 +150,11 @@ pub trait Scalar:
     fn div_flag(self, d: Self, overflow: &mut bool) -> Self;
 
     /// The smaller of two values (`other` if they are unordered).
+    ///
+    /// Named `min_of` rather than `min` on purpose: the fixed-point types
+    /// implement `Ord`, and `f32`/`f64` have inherent `min`/`max` with
+    /// their own NaN rule, so a trait method called `min` would be
+    /// shadowed by, or ambiguous with, those at call sites.
     #[must_use]
     fn min_of(self, other: Self) -> Self {
         if self < other { self } else { other }

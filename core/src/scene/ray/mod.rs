@@ -55,6 +55,29 @@ struct RayObject<S> {
 /// each object's inverse pose and bounding box, the spheres, and with
 /// [`Self::with_grid`] the world-space triangles in a uniform grid. Cheap
 /// to share between threads (`Sync` when `S` is); every query is `&self`.
+///
+/// ```
+/// use sightline::scene::{builtin, Color, RayBuffers, RayScene, RayTriangle};
+/// use sightline::target::Framebuffer;
+///
+/// let scene = &builtin::CUBE;
+/// let view = scene.view::<f32>(80, 60).unwrap();
+/// // Caller storage for the per-object grids, sized by a const fn.
+/// let need = scene.ray_storage();
+/// let mut triangles = vec![RayTriangle::EMPTY; need.triangles];
+/// let (mut cells, mut items) = (vec![0u32; need.cells], vec![0u32; need.items]);
+/// let buffers = RayBuffers { triangles: &mut triangles, cells: &mut cells, items: &mut items };
+/// let rays = RayScene::with_grid(scene, &view, buffers).unwrap();
+///
+/// let mut pixels = vec![Color::new(0, 0, 0); 80 * 60];
+/// rays.render(&mut Framebuffer::new(&mut pixels, 80, 60, 80).unwrap());
+/// // The cube is in the middle of the picture, the background at a corner.
+/// assert_ne!(pixels[30 * 80 + 40], scene.background);
+/// assert_eq!(pixels[0], scene.background);
+/// // Without storage the same picture comes from testing every triangle.
+/// let plain = RayScene::new(scene, &view).unwrap();
+/// assert_eq!(plain.pixel(40, 30), pixels[30 * 80 + 40]);
+/// ```
 #[derive(Clone, Debug)]
 pub struct RayScene<'a, S> {
     scene: Scene<'a>,

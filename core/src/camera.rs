@@ -206,6 +206,7 @@ impl<S: Scalar> Camera<S> {
         let a = Mat3::from_cols(u, v, w);
         let config = SolveConfig {
             rcond_min: S::EPSILON.sqrt(),
+            ..SolveConfig::default()
         };
         let sol = solve::solve_with(&a.m, &Mat3::<S>::IDENTITY.m, &config)
             .map_err(CameraError::Degenerate)?;

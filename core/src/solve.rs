@@ -41,14 +41,76 @@
 //! operation.
 //!
 //!
+//! # Refinement and the residual ratio
+//!
+//! A float solution is checked, and if need be improved, by its **residual
+//! ratio**, LAPACK's normwise test ratio with the order n in the
+//! denominator:
+//!
+//! ```text
+//! ratio = max over columns j of ‖b_j − A x̂_j‖₁ / (‖A‖₁ · ‖x̂_j‖₁ · n · u)
+//! ```
+//!
+//! with the residual of the stored values formed in a wider precision
+//! (f64 for f32, a compensated double-double dot product for f64; see the
+//! private `refine` module) and u the unit roundoff (half an ulp of 1,
+//! LAPACK's `xLAMCH('E')`). When the ratio exceeds
+//! [`REFINE_ABOVE_RATIO`], or the growth makes ρ·n·u exceed 2⁻¹⁰, the
+//! solver takes steps of iterative refinement as LAPACK's `xGERFS` does
+//! (residual in the wider precision, correction solved with the same
+//! factors; at most [`MAX_REFINEMENT_STEPS`], stopping when a step no
+//! longer halves the ratio). A well-conditioned system with modest growth
+//! takes no step: its only extra cost is the one residual.
+//! [`Diagnostics::refinement_steps`] says how many were taken. If the best
+//! iterate's ratio is still not below [`RESIDUAL_RATIO_MAX`] = 30 (LAPACK's
+//! test threshold), the solve fails with [`SolveError::Inaccurate`]. So a
+//! returned float solution has ratio < 30 (as computed by the solver in
+//! the wider precision).
+//!
+//! # Condition threshold: at least one correct digit
+//!
+//! With κ̂₁ = 1/`rcond` and η = ‖b − A x̂‖₁ / (‖A‖₁ ‖x̂‖₁) the backward
+//! error of the returned x̂, its relative forward error against the system
+//! the caller meant (the stored entries being the caller's values rounded
+//! once, a relative perturbation of u) is bounded, to first order, by
+//!
+//! ```text
+//! ‖x − x̂‖₁ / ‖x̂‖₁ ≤ ferr = κ̂₁ · (η + u)
+//! ```
+//!
+//! (Higham, Theorem 7.2; LAPACK's `FERR` has the same form). A float
+//! solution is returned only when ferr ≤ [`SolveConfig::max_forward_error`],
+//! by default 1/10: at least one correct decimal digit. Otherwise the
+//! result is [`SolveError::IllConditioned`]. Since η ≥ 0, this requires
+//! rcond ≥ 10·u = 5ε at the least; the check on u/rcond alone is made
+//! before the solve. κ̂₁ is exact for N ≤ [`EXACT_INVERSE_NORM_MAX_N`] (up
+//! to rounding) and an estimate from below above it, so there ferr is an
+//! estimate (as LAPACK's), usually within a factor of 3.
+//!
+//! # Fixed point
+//!
+//! Fixed point is refined the same way (residual exact to 2⁻¹⁰⁶ in
+//! double-double, correction on the grid, u = one step); a correction
+//! below the grid ends refinement. Because rounding is absolute, a
+//! relative residual ratio or forward-error bound is not a meaningful
+//! guarantee for small solutions; fixed point therefore keeps only the
+//! [`SolveConfig::rcond_min`] threshold and the absolute bound
+//! [`fixed_residual_bound`], and never reports [`SolveError::Inaccurate`].
+//! This is a stated limit, not a guarantee of a ratio below 30.
+//!
+//! # Errors
+//!
 //! See [`SolveError`]. In short: an exactly zero pivot is
 //! [`SolveError::Singular`] with the column where elimination failed;
-//! `rcond` below the threshold (by default the scalar's
-//! [`EPSILON`](Scalar::EPSILON), as `xGESVX` warns when `RCOND < ε`) is
-//! [`SolveError::IllConditioned`]; an overflowing or non-finite intermediate
-//! (fixed-point saturation, float ±∞) is [`SolveError::Overflow`]; NaN or ±∞
-//! in the input is [`SolveError::NonFinite`]. A returned solution never
-//! contains NaN, ±∞ or a saturated value.
+//! `rcond` below [`SolveConfig::rcond_min`] (by default the scalar's
+//! [`EPSILON`](Scalar::EPSILON), as `xGESVX` warns when `RCOND < ε`), or
+//! a forward-error bound above [`SolveConfig::max_forward_error`], is
+//! [`SolveError::IllConditioned`]; a residual ratio that refinement cannot
+//! bring below 30 is [`SolveError::Inaccurate`]; an overflowing or
+//! non-finite intermediate (fixed-point saturation, float ±∞) is
+//! [`SolveError::Overflow`]; NaN or ±∞ in the input is
+//! [`SolveError::NonFinite`]. A returned solution never contains NaN, ±∞
+//! or a saturated value.
 
 // Index loops mirror the textbook's elimination and substitution formulas.
 #![allow(clippy::needless_range_loop)]
@@ -56,8 +118,12 @@
 use crate::scalar::Scalar;
 use core::fmt;
 
+mod refine;
+pub use refine::{MAX_REFINEMENT_STEPS, REFINE_ABOVE_RATIO, RESIDUAL_RATIO_MAX};
+
 /// Why a system could not be solved.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum SolveError {
     /// Elimination met an exactly zero pivot column: no row at or below the
     /// diagonal of `column` (0-based) has a non-zero entry. The matrix is
@@ -66,9 +132,11 @@ pub enum SolveError {
         /// The 0-based column where elimination failed.
         column: usize,
     },
-    /// The estimated reciprocal condition number is below the threshold: the
-    /// matrix is singular to working precision, and a solution would carry
-    /// no correct digits.
+    /// The estimated reciprocal condition number is below
+    /// [`SolveConfig::rcond_min`], or the forward-error bound κ̂₁·(η + u) of
+    /// the module docs exceeds [`SolveConfig::max_forward_error`] (floats):
+    /// the matrix is singular to working precision, and a solution would
+    /// not carry the requested correct digits.
     IllConditioned {
         /// The estimate (upper bound) of 1 / κ₁(A), rounded to f32.
         rcond: f32,
@@ -79,6 +147,16 @@ pub enum SolveError {
     Overflow,
     /// The input contains NaN or ±∞.
     NonFinite,
+    /// Floats only: even after iterative refinement, the residual ratio
+    /// ‖b − A x̂‖₁ / (‖A‖₁ ‖x̂‖₁ n u) of the best iterate (module docs) is
+    /// not below [`RESIDUAL_RATIO_MAX`] = 30. The factorisation is too
+    /// inaccurate (pivot growth near 1/u) for refinement to converge, so no
+    /// solution backward stable to LAPACK's standard exists from it.
+    Inaccurate {
+        /// The residual ratio of the best iterate, rounded to f32 (∞ if it
+        /// could not be formed in range).
+        ratio: f32,
+    },
 }
 
 impl fmt::Display for SolveError {
@@ -93,6 +171,10 @@ impl fmt::Display for SolveError {
             ),
             Self::Overflow => f.write_str("arithmetic overflow during elimination"),
             Self::NonFinite => f.write_str("input contains NaN or infinity"),
+            Self::Inaccurate { ratio } => write!(
+                f,
+                "solution inaccurate after refinement (residual ratio {ratio:e}, limit 30)"
+            ),
         }
     }
 }
@@ -109,6 +191,17 @@ pub struct Diagnostics<S> {
     pub rcond: S,
     /// ‖A‖₁, the maximum absolute column sum.
     pub norm1: S,
+    /// Steps of iterative refinement taken (0 when the first solution's
+    /// residual ratio was at most [`REFINE_ABOVE_RATIO`] and growth was
+    /// modest), at most [`MAX_REFINEMENT_STEPS`].
+    pub refinement_steps: u8,
+    /// The residual ratio of the returned solution (module docs), rounded
+    /// to f32; below 30 for floats.
+    pub residual_ratio: f32,
+    /// The forward-error bound κ̂₁·(η + u) of the module docs, rounded to
+    /// f32 (for fixed point computed the same way, with u one step, and
+    /// informative only).
+    pub forward_error: f32,
 }
 
 /// A solution with its diagnostics.
@@ -120,18 +213,38 @@ pub struct Solution<S, const N: usize, const M: usize> {
     pub diagnostics: Diagnostics<S>,
 }
 
-/// Thresholds for [`solve_with`].
+/// Thresholds for [`solve_with`]. Build it with struct update syntax,
+/// e.g. `SolveConfig { rcond_min: x, ..SolveConfig::default() }`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SolveConfig<S> {
     /// Systems whose `rcond` estimate is below this are rejected with
-    /// [`SolveError::IllConditioned`]. Zero disables the check.
+    /// [`SolveError::IllConditioned`]. Zero disables this check.
     pub rcond_min: S,
+    /// Float solutions whose forward-error bound κ̂₁·(η + u) (module docs)
+    /// exceeds this are rejected with [`SolveError::IllConditioned`]. The
+    /// default 1/10 guarantees one correct digit; `f32::INFINITY` disables
+    /// the check. Ignored for fixed point.
+    pub max_forward_error: f32,
 }
 
 impl<S: Scalar> Default for SolveConfig<S> {
     fn default() -> Self {
         Self {
             rcond_min: S::EPSILON,
+            max_forward_error: 0.1,
+        }
+    }
+}
+
+impl<S: Scalar> SolveConfig<S> {
+    /// No condition check at all: any system that factors without a zero
+    /// pivot or overflow is solved (the residual-ratio check,
+    /// [`SolveError::Inaccurate`], still applies).
+    #[must_use]
+    pub fn unchecked() -> Self {
+        Self {
+            rcond_min: S::ZERO,
+            max_forward_error: f32::INFINITY,
         }
     }
 }
@@ -185,18 +298,38 @@ pub fn solve_with<S: Scalar, const N: usize, const M: usize>(
     }
     let lu = Lu::factor(a)?;
     let rcond = lu.rcond();
+    let ill = SolveError::IllConditioned {
+        rcond: rcond.to_f32(),
+    };
     if rcond < config.rcond_min {
-        return Err(SolveError::IllConditioned {
-            rcond: rcond.to_f32(),
-        });
+        return Err(ill);
+    }
+    let u = refine::unit_roundoff::<S>();
+    let max_ferr = f64::from(config.max_forward_error);
+    // ferr ≥ u/rcond whatever the residual: reject before solving.
+    if S::IS_FLOAT && !(u / rcond.to_f64() <= max_ferr) {
+        return Err(ill);
     }
     let x = lu.solve_finite(b)?;
+    let checked = refine::refine(a, b, &lu, x);
+    if S::IS_FLOAT && !(checked.ratio < RESIDUAL_RATIO_MAX) {
+        return Err(SolveError::Inaccurate {
+            ratio: checked.ratio as f32,
+        });
+    }
+    let ferr = (checked.backward + u) / rcond.to_f64();
+    if S::IS_FLOAT && !(ferr <= max_ferr) {
+        return Err(ill);
+    }
     Ok(Solution {
-        x,
+        x: checked.x,
         diagnostics: Diagnostics {
             growth: lu.growth(),
             rcond,
             norm1: lu.norm1,
+            refinement_steps: checked.steps,
+            residual_ratio: checked.ratio as f32,
+            forward_error: ferr as f32,
         },
     })
 }

@@ -303,6 +303,7 @@ impl<S: Scalar> TextureVectors<S> {
         let b = [[ei.x, ei.y, ei.z], [ej.x, ej.y, ej.z]];
         let config = SolveConfig {
             rcond_min: S::EPSILON.sqrt(),
+            ..SolveConfig::default()
         };
         let sol = solve::solve_with(&a, &b, &config).map_err(MappingError::Solve)?;
         let [ur, vr] = sol.x;

@@ -219,6 +219,8 @@ fn hash_err(h: &mut Fnv, e: SolveError) {
         SolveError::IllConditioned { rcond } => 0x200 ^ rcond.to_bits(),
         SolveError::Overflow => 0x300,
         SolveError::NonFinite => 0x400,
+        // `SolveError` is `#[non_exhaustive]`; `Inaccurate` and later variants.
+        _ => 0x500,
     });
 }
 

@@ -142,8 +142,9 @@ pub enum SolveError {
         rcond: f32,
     },
     /// An intermediate or the solution overflowed the representation: a
-    /// fixed-point product or quotient that would have saturated (including
-    /// ‖A‖₁, the largest column sum of |A|), or a float that became ±∞.
+    /// fixed-point product or quotient that would have saturated, or a float
+    /// that became ±∞ (for both, including ‖A‖₁, the largest column sum of
+    /// |A|).
     Overflow,
     /// The input contains NaN or ±∞.
     NonFinite,
@@ -367,7 +368,10 @@ impl<S: Scalar, const N: usize> Lu<S, N> {
         // Fixed point: a column sum of |A| beyond the range saturates, and
         // then no condition number can be formed; report it rather than
         // return diagnostics computed from a clipped norm.
-        if !S::IS_FLOAT && norm1 == S::MAX {
+        // Floats: likewise when it overflows to ∞ (entries near the range),
+        // which would otherwise make rcond 0 and misreport a
+        // well-conditioned matrix as ill-conditioned.
+        if (!S::IS_FLOAT && norm1 == S::MAX) || !norm1.is_finite() {
             return Err(SolveError::Overflow);
         }
         let mut max_seen = max_a;

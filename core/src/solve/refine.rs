@@ -27,6 +27,9 @@
 //! into the subnormal range is at most 2⁻¹⁰²² of the largest, an absolute
 //! error far below the ratios' denominators, which are at least 1).
 
+// `!(a <= b)` on purpose: a NaN ratio must stop refinement.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 use super::Lu;
 use crate::scalar::Scalar;
 

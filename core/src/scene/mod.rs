@@ -74,6 +74,7 @@ mod ray;
 mod render;
 mod shade;
 
+#[cfg(feature = "demo")]
 pub mod builtin;
 
 pub use build::{QuantizedPositions, quantize_normals, quantize_positions};
@@ -710,9 +711,11 @@ impl Scene<'_> {
     feature = "perspective",
     feature = "depth",
     feature = "raycast",
-    feature = "sphere"
+    feature = "sphere",
+    feature = "demo"
 ))]
 mod tests;
-// What a build with fewer stages does; runs with any feature set.
-#[cfg(test)]
+// What a build with fewer stages does; runs with any feature set that
+// has the demo scenes.
+#[cfg(all(test, feature = "demo"))]
 mod feature_tests;

@@ -77,7 +77,7 @@
 //! | [`texture`] | texture-mapping vectors (axis-edge fast path, any polygon via [`solve`]), the per-pixel perspective mapping, and the affine/perspective choice from a distortion bound |
 //! | [`target`] | span sinks: slice framebuffer with stride, bands for strip rendering, embedded-graphics `DrawTarget` adapter |
 //! | [`ray`] | screen→world: rays from a ray-casting camera, planes, polygons with four inclusion tests, spheres, watertight triangles, nearest hit, bounding boxes and spheres, a uniform grid, and a column caster over 2D grid maps |
-//! | [`scene`] | one borrowed scene description (meshes, poses, materials, light, camera), its prepared form in the render scalar, the raster renderer over it and the ray path, with one material model; built-in demo scenes as static data |
+//! | [`scene`] | in rooms: the borrowed description (meshes, poses, materials, light, camera), hand-made descriptions, the prepared scene in the render scalar, the raster renderer and the ray renderer over it, the one material model they share, and the demo scenes as static data (feature `demo`) |
 //!
 //! ## Coordinate conventions
 //!

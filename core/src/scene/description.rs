@@ -100,6 +100,11 @@ impl<'a> TextureData<'a> {
 
 /// How the raster path maps a texture.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Deserialize),
+    serde(rename = "mode", deny_unknown_fields)
+)]
 pub enum TextureMode {
     /// Linear in screen space: cheap, distorted on steep polygons.
     Affine,
@@ -155,54 +160,86 @@ pub struct SceneSphere {
 
 /// A directional light with an ambient term.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Deserialize),
+    serde(rename = "light", deny_unknown_fields)
+)]
 pub struct Light {
     /// Direction *towards* the light (world; need not be unit length).
+    #[cfg_attr(feature = "serde", serde(deserialize_with = "super::de::finite3"))]
     pub direction: [f32; 3],
-    /// Ambient intensity.
+    /// Ambient intensity (read from a file: 0 unless given).
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, deserialize_with = "super::de::finite")
+    )]
     pub ambient: f32,
-    /// Diffuse intensity.
+    /// Diffuse intensity (read from a file: 1 unless given).
+    #[cfg_attr(
+        feature = "serde",
+        serde(default = "super::de::one", deserialize_with = "super::de::finite")
+    )]
     pub diffuse: f32,
 }
 
 /// The camera, in any of the forms of [`Camera`].
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Deserialize),
+    serde(rename = "camera", deny_unknown_fields)
+)]
 pub enum CameraSpec {
     /// [`Camera::from_angles`].
     Angles {
         /// Eye position.
+        #[cfg_attr(feature = "serde", serde(deserialize_with = "super::de::finite3"))]
         position: [f32; 3],
         /// Roll, pitch, yaw in radians.
+        #[cfg_attr(feature = "serde", serde(deserialize_with = "super::de::finite3"))]
         angles: [f32; 3],
     },
     /// [`Camera::from_orthonormal`].
     Orthonormal {
         /// Eye position.
+        #[cfg_attr(feature = "serde", serde(deserialize_with = "super::de::finite3"))]
         position: [f32; 3],
         /// Screen right.
+        #[cfg_attr(feature = "serde", serde(deserialize_with = "super::de::finite3"))]
         right: [f32; 3],
         /// Screen down.
+        #[cfg_attr(feature = "serde", serde(deserialize_with = "super::de::finite3"))]
         down: [f32; 3],
         /// Direction of view.
+        #[cfg_attr(feature = "serde", serde(deserialize_with = "super::de::finite3"))]
         forward: [f32; 3],
     },
     /// [`Camera::from_vectors`] (general vectors, solved).
     Vectors {
         /// Eye position.
+        #[cfg_attr(feature = "serde", serde(deserialize_with = "super::de::finite3"))]
         position: [f32; 3],
         /// World vector of view x.
+        #[cfg_attr(feature = "serde", serde(deserialize_with = "super::de::finite3"))]
         u: [f32; 3],
         /// World vector of view y.
+        #[cfg_attr(feature = "serde", serde(deserialize_with = "super::de::finite3"))]
         v: [f32; 3],
         /// World vector of view z.
+        #[cfg_attr(feature = "serde", serde(deserialize_with = "super::de::finite3"))]
         w: [f32; 3],
     },
     /// [`Camera::look_at`].
     LookAt {
         /// Eye position.
+        #[cfg_attr(feature = "serde", serde(deserialize_with = "super::de::finite3"))]
         eye: [f32; 3],
         /// Point looked at.
+        #[cfg_attr(feature = "serde", serde(deserialize_with = "super::de::finite3"))]
         target: [f32; 3],
         /// Screen up.
+        #[cfg_attr(feature = "serde", serde(deserialize_with = "super::de::finite3"))]
         up: [f32; 3],
     },
 }

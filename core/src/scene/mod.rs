@@ -77,6 +77,8 @@
 //! surface, so their images can be compared pixel by pixel.
 
 mod build;
+#[cfg(feature = "serde")]
+mod de;
 mod description;
 mod error;
 mod prepared;

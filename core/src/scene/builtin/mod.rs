@@ -414,3 +414,7 @@ pub static COLUMN_MAP: GridMap<'static> = GridMap {
     start: [1.5, 1.5],
     heading: 0.3,
 };
+
+// The bunny's generated data against its OBJ source.
+#[cfg(test)]
+mod tests;

@@ -127,3 +127,16 @@ fn texture_modes_and_default() {
         assert_eq!(mode, want, "{text:?}");
     }
 }
+
+/// The bunny core's build script generates its data from is the one the
+/// host workloads and scene files load.
+#[test]
+fn core_bunny_source_is_the_test_data_bunny() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let core = std::fs::read(root.join("core/data/bunny.obj")).unwrap();
+    let tests = std::fs::read(root.join("tests/data/bunny.obj")).unwrap();
+    assert!(
+        core == tests,
+        "core/data/bunny.obj differs from tests/data/bunny.obj"
+    );
+}

@@ -21,6 +21,7 @@ impl<'a> Scene<'a> {
     /// scene can be a `static`).
     ///
     /// ```
+    /// # #[cfg(feature = "demo")] {
     /// use sightline::scene::{CameraSpec, Color, Light, Scene, builtin};
     ///
     /// static SCENE: Scene<'static> = Scene::new(
@@ -30,6 +31,7 @@ impl<'a> Scene<'a> {
     /// .with_background(Color::new(4, 8, 12));
     /// assert_eq!(SCENE.light, Light::DEFAULT);
     /// assert!(SCENE.validate().is_ok());
+    /// # }
     /// ```
     #[must_use]
     pub const fn new(camera: CameraSpec, objects: &'a [SceneObject<'a>]) -> Self {

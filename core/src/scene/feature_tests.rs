@@ -10,7 +10,7 @@ use crate::camera::Projection;
 use crate::math::Vec3;
 use crate::pipeline::{Pipeline, Vertex};
 use crate::raster::{FillOutcome, Flat, NoDepth};
-use crate::scalar::I16F16;
+use crate::scalar::{I16F16, Scalar};
 use crate::target::Framebuffer;
 use std::vec;
 

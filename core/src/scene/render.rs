@@ -65,6 +65,7 @@ pub struct RasterStats {
 /// A built-in scene rendered into a 240×240 RGB565 frame in I16F16:
 ///
 /// ```
+/// # #[cfg(feature = "demo")] {
 /// use sightline::math::Vec3;
 /// use sightline::pipeline::MeshVertex;
 /// use sightline::raster::NoDepth;
@@ -85,6 +86,7 @@ pub struct RasterStats {
 /// let frame = renderer.project(objects, &mut scratch).unwrap();
 /// let stats = frame.draw(&mut fb, &mut NoDepth);
 /// assert!(stats.drawn > 0);
+/// # }
 /// ```
 #[derive(Clone, Copy, Debug)]
 pub struct Renderer<S> {

@@ -1,8 +1,9 @@
 use super::builtin::{self, CUBE, CUBE_MESH};
 use super::*;
 use crate::raster::{DepthBuffer, Shade};
-use crate::scalar::I16F16;
+use crate::scalar::{I16F16, Scalar};
 use crate::target::Framebuffer;
+use crate::transform::Pose;
 use embedded_graphics::pixelcolor::IntoStorage;
 use std::vec;
 

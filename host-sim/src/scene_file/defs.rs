@@ -6,9 +6,16 @@
 //! Numbers are checked while they are read (finite; a field of view in
 //! (0°, 180°); positive widths, radii and scales), so RON reports the
 //! line and column of the offending value.
+//!
+//! The camera ([`CameraSpec`]), the light ([`Light`]) and the texture
+//! mode ([`TextureMode`]) are core's own description types, read through
+//! core's `serde` feature with the same names and checks; the rest differ
+//! from core's types in shape (degrees, `[r, g, b]` bytes, file names)
+//! and are converted in `scene_file`.
 
 use serde::Deserialize;
 use serde::de::{Deserializer, Error as _};
+use sightline::scene::{CameraSpec, Light, TextureMode};
 
 /// `[r, g, b]` in 0..=255.
 pub type Rgb = [u8; 3];
@@ -77,63 +84,6 @@ fn fov_degrees<'de, D: Deserializer<'de>>(d: D) -> Result<f32, D::Error> {
     }
 }
 
-/// The camera forms of a scene file.
-#[derive(Clone, Debug, Deserialize)]
-#[serde(rename = "camera", deny_unknown_fields)]
-pub enum CameraDef {
-    /// Position and roll, pitch, yaw (radians).
-    Angles {
-        /// Eye position.
-        #[serde(deserialize_with = "finite3")]
-        position: [f32; 3],
-        /// (roll, pitch, yaw) in radians.
-        #[serde(deserialize_with = "finite3")]
-        angles: [f32; 3],
-    },
-    /// Orthonormal right, down, forward.
-    Orthonormal {
-        /// Eye position.
-        #[serde(deserialize_with = "finite3")]
-        position: [f32; 3],
-        /// Screen right.
-        #[serde(deserialize_with = "finite3")]
-        right: [f32; 3],
-        /// Screen down.
-        #[serde(deserialize_with = "finite3")]
-        down: [f32; 3],
-        /// View direction.
-        #[serde(deserialize_with = "finite3")]
-        forward: [f32; 3],
-    },
-    /// General vectors, solved by Gaussian elimination.
-    Vectors {
-        /// Eye position.
-        #[serde(deserialize_with = "finite3")]
-        position: [f32; 3],
-        /// World vector of view x.
-        #[serde(deserialize_with = "finite3")]
-        u: [f32; 3],
-        /// World vector of view y.
-        #[serde(deserialize_with = "finite3")]
-        v: [f32; 3],
-        /// World vector of view z.
-        #[serde(deserialize_with = "finite3")]
-        w: [f32; 3],
-    },
-    /// Eye, target, up.
-    LookAt {
-        /// Eye.
-        #[serde(deserialize_with = "finite3")]
-        eye: [f32; 3],
-        /// Target.
-        #[serde(deserialize_with = "finite3")]
-        target: [f32; 3],
-        /// Up.
-        #[serde(deserialize_with = "finite3")]
-        up: [f32; 3],
-    },
-}
-
 /// A projection.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(rename = "projection", deny_unknown_fields)]
@@ -152,18 +102,6 @@ pub enum ProjectionDef {
     },
 }
 
-/// Raster texture mapping mode.
-#[derive(Clone, Copy, Debug, Deserialize)]
-#[serde(rename = "mode", deny_unknown_fields)]
-pub enum ModeDef {
-    /// Linear in screen space.
-    Affine,
-    /// Perspective-correct.
-    Perspective,
-    /// Chosen per triangle.
-    Auto,
-}
-
 /// A material.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(rename = "material", deny_unknown_fields)]
@@ -178,12 +116,12 @@ pub enum MaterialDef {
         file: String,
         /// Mapping mode.
         #[serde(default = "default_mode")]
-        mode: ModeDef,
+        mode: TextureMode,
     },
 }
 
-fn default_mode() -> ModeDef {
-    ModeDef::Perspective
+fn default_mode() -> TextureMode {
+    TextureMode::Perspective
 }
 
 /// An object.
@@ -210,21 +148,6 @@ fn one() -> f32 {
     1.0
 }
 
-/// The light.
-#[derive(Clone, Debug, Deserialize)]
-#[serde(rename = "light", deny_unknown_fields)]
-pub struct LightDef {
-    /// Direction towards the light.
-    #[serde(deserialize_with = "finite3")]
-    pub direction: [f32; 3],
-    /// Ambient intensity.
-    #[serde(default, deserialize_with = "finite")]
-    pub ambient: f32,
-    /// Diffuse intensity.
-    #[serde(default = "one", deserialize_with = "finite")]
-    pub diffuse: f32,
-}
-
 /// A sphere.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(rename = "sphere", deny_unknown_fields)]
@@ -248,8 +171,8 @@ pub struct SceneDef {
     /// Description.
     #[serde(default)]
     pub description: String,
-    /// Camera.
-    pub camera: CameraDef,
+    /// Camera (core's own type, read through its `serde` feature).
+    pub camera: CameraSpec,
     /// Projection.
     pub projection: ProjectionDef,
     /// Near distance, > 0.
@@ -258,8 +181,8 @@ pub struct SceneDef {
     /// Far distance, > 0 (and > near).
     #[serde(default = "default_far", deserialize_with = "positive_far")]
     pub far: f32,
-    /// Light.
-    pub light: LightDef,
+    /// Light (core's own type, read through its `serde` feature).
+    pub light: Light,
     /// Background colour.
     #[serde(default)]
     pub background: Rgb,

@@ -7,17 +7,15 @@
 mod defs;
 mod obj;
 
-pub use defs::{
-    CameraDef, LightDef, MaterialDef, ModeDef, ObjectDef, ProjectionDef, Rgb, SceneDef, SphereDef,
-};
+pub use defs::{MaterialDef, ObjectDef, ProjectionDef, Rgb, SceneDef, SphereDef};
 pub use obj::{OwnedMesh, is_closed, load_obj};
 
 use crate::image::read_png_rgb8_limited;
 use sightline::camera::CameraError;
 use sightline::math::Vec3;
 use sightline::scene::{
-    self, CameraSpec, Color, Light, Material, MeshData, ProjectionSpec, Scene, SceneObject,
-    SceneSphere, TextureData, TextureMode,
+    self, CameraSpec, Color, Material, MeshData, ProjectionSpec, Scene, SceneObject, SceneSphere,
+    TextureData, TextureMode,
 };
 use sightline::transform::{Euler, Pose};
 use std::fmt;
@@ -258,12 +256,7 @@ pub fn parse(text: &str, path: &Path) -> Result<LoadedScene, FileError> {
                     })
                     .collect(),
             );
-            let mode = match mode {
-                ModeDef::Affine => TextureMode::Affine,
-                ModeDef::Perspective => TextureMode::Perspective,
-                ModeDef::Auto => TextureMode::Auto,
-            };
-            texture = Some((texels, w as u16, h as u16, mode));
+            texture = Some((texels, w as u16, h as u16, *mode));
         }
         objects.push(LoadedObject {
             mesh,
@@ -279,8 +272,7 @@ pub fn parse(text: &str, path: &Path) -> Result<LoadedScene, FileError> {
     };
     // Check the camera now, so that a singular camera is reported with
     // its place in the file.
-    let spec = loaded.camera_spec();
-    if let Err(e) = spec.build::<f32>() {
+    if let Err(e) = loaded.def.camera.build::<f32>() {
         return Err(camera_error(&loaded.def.camera, e, text, path));
     }
     Ok(loaded)
@@ -288,37 +280,37 @@ pub fn parse(text: &str, path: &Path) -> Result<LoadedScene, FileError> {
 
 /// The error for a camera that core cannot build, placed at the camera
 /// (or at the field to blame) and saying what was expected.
-fn camera_error(camera: &CameraDef, e: CameraError, text: &str, path: &Path) -> FileError {
+fn camera_error(camera: &CameraSpec, e: CameraError, text: &str, path: &Path) -> FileError {
     let token = match camera {
-        CameraDef::Angles { .. } => "Angles",
-        CameraDef::Orthonormal { .. } => "Orthonormal",
-        CameraDef::Vectors { .. } => "Vectors",
-        CameraDef::LookAt { .. } => "LookAt",
+        CameraSpec::Angles { .. } => "Angles",
+        CameraSpec::Orthonormal { .. } => "Orthonormal",
+        CameraSpec::Vectors { .. } => "Vectors",
+        CameraSpec::LookAt { .. } => "LookAt",
     };
     let start = find_field(text, 0, "camera").unwrap_or(0);
     let cam = text[start..].find(token).map(|p| start + p);
     let field = |name| cam.and_then(|c| find_field(text, c, name)).or(cam);
     let (offset, message) = match (camera, e) {
-        (CameraDef::LookAt { up, .. }, _) if up.iter().all(|&c| c == 0.0) => (
+        (CameraSpec::LookAt { up, .. }, _) if up.iter().all(|&c| c == 0.0) => (
             field("up"),
             "camera: the up vector is zero: expected a non-zero up, not parallel to the view"
                 .to_string(),
         ),
-        (CameraDef::LookAt { eye, target, .. }, _) if eye == target => (
+        (CameraSpec::LookAt { eye, target, .. }, _) if eye == target => (
             field("target"),
             "camera: eye and target are the same point: expected a target away from the eye"
                 .to_string(),
         ),
-        (CameraDef::LookAt { .. }, CameraError::UpParallelToView) => (
+        (CameraSpec::LookAt { .. }, CameraError::UpParallelToView) => (
             field("up"),
             "camera: the up vector is parallel to the direction of view: expected an up vector not parallel to target - eye"
                 .to_string(),
         ),
-        (CameraDef::Vectors { .. }, e) => (
+        (CameraSpec::Vectors { .. }, e) => (
             cam,
             format!("camera: {e}; expected three linearly independent vectors u, v, w"),
         ),
-        (CameraDef::Orthonormal { .. }, e) => (
+        (CameraSpec::Orthonormal { .. }, e) => (
             cam,
             format!(
                 "camera: {e}; expected unit, mutually perpendicular, right-handed right/down/forward"
@@ -343,25 +335,6 @@ impl LoadedScene {
     #[must_use]
     pub fn name(&self) -> &str {
         &self.def.name
-    }
-
-    fn camera_spec(&self) -> CameraSpec {
-        match self.def.camera.clone() {
-            CameraDef::Angles { position, angles } => CameraSpec::Angles { position, angles },
-            CameraDef::Orthonormal {
-                position,
-                right,
-                down,
-                forward,
-            } => CameraSpec::Orthonormal {
-                position,
-                right,
-                down,
-                forward,
-            },
-            CameraDef::Vectors { position, u, v, w } => CameraSpec::Vectors { position, u, v, w },
-            CameraDef::LookAt { eye, target, up } => CameraSpec::LookAt { eye, target, up },
-        }
     }
 
     /// Calls `f` with the core scene borrowing this data.
@@ -429,7 +402,7 @@ impl LoadedScene {
         let scene = Scene {
             name: &d.name,
             description: &d.description,
-            camera: self.camera_spec(),
+            camera: d.camera,
             projection: match d.projection {
                 ProjectionDef::Perspective { fov_x_degrees } => ProjectionSpec::Perspective {
                     fov_x: fov_x_degrees.to_radians(),
@@ -438,11 +411,7 @@ impl LoadedScene {
             },
             near: d.near,
             far: d.far,
-            light: Light {
-                direction: d.light.direction,
-                ambient: d.light.ambient,
-                diffuse: d.light.diffuse,
-            },
+            light: d.light,
             background: color(d.background),
             objects: &objects,
             spheres: &spheres,

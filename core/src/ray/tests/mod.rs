@@ -4,7 +4,8 @@
 
 mod basics;
 mod bounding_sphere;
-#[cfg(feature = "column")]
+// Its maze is the demo scenes' `COLUMN_MAP`.
+#[cfg(all(feature = "column", feature = "demo"))]
 mod column;
 #[cfg(feature = "grid")]
 mod grid;

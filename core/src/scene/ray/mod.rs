@@ -57,6 +57,7 @@ struct RayObject<S> {
 /// to share between threads (`Sync` when `S` is); every query is `&self`.
 ///
 /// ```
+/// # #[cfg(feature = "demo")] {
 /// use sightline::scene::{builtin, Color, RayBuffers, RayScene, RayTriangle};
 /// use sightline::target::Framebuffer;
 ///
@@ -77,6 +78,7 @@ struct RayObject<S> {
 /// // Without storage the same picture comes from testing every triangle.
 /// let plain = RayScene::new(scene, &view).unwrap();
 /// assert_eq!(plain.pixel(40, 30), pixels[30 * 80 + 40]);
+/// # }
 /// ```
 #[derive(Clone, Debug)]
 pub struct RayScene<'a, S> {

@@ -363,6 +363,38 @@ impl Scene<'_> {
             return Err(SceneError::BadProjection);
         }
         let camera = self.camera.build::<S>().map_err(SceneError::Camera)?;
+        self.view_with(camera, width, height)
+    }
+
+    /// The scene's projection for a `width`×`height` image, seen through
+    /// a `camera` you built yourself instead of [`Scene::camera`].
+    ///
+    /// [`CameraSpec::build`] matches every camera form at run time, so a
+    /// firmware that calls [`Scene::view`] or [`Renderer::new`](super::Renderer::new)
+    /// links the general-vector solver even if its scenes never use it.
+    /// Build the camera with the one constructor your scenes need
+    /// ([`Camera::look_at`], [`Camera::from_angles`],
+    /// [`Camera::from_orthonormal`]) and pass it here (or to
+    /// [`Renderer::with_camera`](super::Renderer::with_camera)): the
+    /// camera form is then chosen at compile time and no solver code is
+    /// linked (`tests/mcu/run` checks this for the flat cube firmware).
+    ///
+    /// # Errors
+    /// [`SceneError::NonFinite`] for a camera with a NaN or infinite
+    /// entry; [`SceneError::BadProjection`].
+    pub fn view_with<S: Scalar>(
+        &self,
+        camera: Camera<S>,
+        width: u16,
+        height: u16,
+    ) -> Result<View<S>, SceneError> {
+        if width == 0 || height == 0 {
+            return Err(SceneError::BadProjection);
+        }
+        let m = camera.world_to_view();
+        if !(m.matrix.m.iter().flatten().all(|v| v.is_finite()) && m.translation.is_finite()) {
+            return Err(SceneError::NonFinite { what: "camera" });
+        }
         let projection = match self.projection {
             ProjectionSpec::Perspective { fov_x } => {
                 Projection::perspective_fov(S::from_f32(fov_x), width, height)
@@ -389,7 +421,14 @@ impl Scene<'_> {
     /// # Errors
     /// [`SceneError::NonFinite`] naming the part.
     pub fn validate_view(&self) -> Result<(), SceneError> {
-        let camera_ok = match &self.camera {
+        if !self.camera_is_finite() {
+            return Err(SceneError::NonFinite { what: "camera" });
+        }
+        self.validate_view_except_camera()
+    }
+
+    fn camera_is_finite(&self) -> bool {
+        match &self.camera {
             CameraSpec::Angles { position, angles } => finite3(position) && finite3(angles),
             CameraSpec::Orthonormal {
                 position,
@@ -403,13 +442,17 @@ impl Scene<'_> {
             CameraSpec::LookAt { eye, target, up } => {
                 finite3(eye) && finite3(target) && finite3(up)
             }
-        };
+        }
+    }
+
+    /// [`Scene::validate_view`] without the camera (for a renderer given
+    /// its own camera).
+    pub(super) fn validate_view_except_camera(&self) -> Result<(), SceneError> {
         let projection_ok = match self.projection {
             ProjectionSpec::Perspective { fov_x } => fov_x.is_finite(),
             ProjectionSpec::Parallel { width } => width.is_finite(),
         };
         let checks = [
-            (camera_ok, "camera"),
             (projection_ok, "projection"),
             (light_is_finite(&self.light), "light"),
             (self.near.is_finite(), "near"),

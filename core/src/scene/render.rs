@@ -117,6 +117,32 @@ impl<S: Scalar> Renderer<S> {
         )
     }
 
+    /// As [`Renderer::new`], but seen through a `camera` you built
+    /// yourself instead of the scene's [`CameraSpec`](super::CameraSpec):
+    /// a firmware that builds its camera with one direct constructor
+    /// links no camera solver (see [`Scene::view_with`]).
+    ///
+    /// # Errors
+    /// As [`Renderer::new`]; [`SceneError::NonFinite`] names the camera
+    /// for a camera with a non-finite entry, whatever the scene's
+    /// [`Scene::camera`] holds (it is not used).
+    pub fn with_camera(
+        scene: &Scene<'_>,
+        camera: crate::camera::Camera<S>,
+        width: u16,
+        height: u16,
+    ) -> Result<Self, SceneError> {
+        scene.validate_view_except_camera()?;
+        let view = scene.view_with(camera, width, height)?;
+        Self::from_view(
+            view,
+            S::from_f32(scene.near),
+            S::from_f32(scene.far),
+            &scene.light,
+            scene.background,
+        )
+    }
+
     /// A renderer for a camera and projection you built yourself (for
     /// example a focus distance in pixels), clipping at view depths
     /// `near` and `far`.

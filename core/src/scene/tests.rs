@@ -1,5 +1,6 @@
 use super::builtin::{self, CUBE, CUBE_MESH};
 use super::*;
+use crate::math::Vec3;
 use crate::raster::{DepthBuffer, Shade};
 use crate::scalar::{I16F16, Scalar};
 use crate::target::Framebuffer;
@@ -304,4 +305,58 @@ fn short_ray_storage_is_a_clear_error() {
             })
         );
     }
+}
+
+/// `Renderer::with_camera` with the cube's look-at camera built directly
+/// draws the frame `Renderer::new` draws from the scene's `CameraSpec`,
+/// pixel for pixel; a non-finite camera is refused whatever the spec says.
+#[test]
+fn renderer_with_a_direct_camera_equals_the_scene_camera() {
+    fn check<S: Scalar>() {
+        let (w, h) = (96u16, 64u16);
+        let expected = raster_image::<S>(&CUBE, w, h);
+        let CameraSpec::LookAt { eye, target, up } = CUBE.camera else {
+            panic!("the cube's camera is look_at");
+        };
+        let camera = crate::camera::Camera::look_at(vec3(eye), vec3(target), vec3(up)).unwrap();
+        let need = CUBE.storage();
+        let mut vec3s = vec![Vec3::<S>::ZERO; need.vec3s];
+        let mut objects = vec![PreparedObject::EMPTY; need.objects];
+        let objects = CUBE.prepare(&mut vec3s, &mut objects).unwrap();
+        let renderer = Renderer::<S>::with_camera(&CUBE, camera, w, h).unwrap();
+        let mut scratch = vec![crate::pipeline::MeshVertex::default(); need.vertices];
+        let frame = renderer.project(objects, &mut scratch).unwrap();
+        let mut px = vec![Color::new(0, 0, 0); w as usize * h as usize];
+        let mut keys = vec![u16::MAX; px.len()];
+        let mut fb = Framebuffer::new(&mut px, w, h, w as usize).unwrap();
+        let mut depth = DepthBuffer::new(&mut keys, w, h, w as usize, 0).unwrap();
+        frame.draw(&mut fb, &mut depth);
+        assert!(px == expected, "{}: with_camera differs from new", S::NAME);
+    }
+    check::<I16F16>();
+    check::<f32>();
+    let nan = crate::camera::Camera::<f32>::from_angles(
+        Vec3::new(f32::NAN, 0.0, 0.0),
+        crate::transform::Euler::new(0.0, 0.0, 0.0),
+    );
+    assert!(matches!(
+        Renderer::with_camera(&CUBE, nan, 8, 8),
+        Err(SceneError::NonFinite { what: "camera" })
+    ));
+    // The scene's own camera spec is not consulted: a NaN there is fine.
+    let mut bad = CUBE;
+    bad.camera = CameraSpec::LookAt {
+        eye: [f32::NAN; 3],
+        target: [0.0; 3],
+        up: [0.0, 1.0, 0.0],
+    };
+    let good = crate::camera::Camera::<f32>::from_angles(
+        Vec3::new(0.0, 0.0, 5.0),
+        crate::transform::Euler::new(0.0, 0.0, 0.0),
+    );
+    assert!(Renderer::with_camera(&bad, good, 8, 8).is_ok());
+    assert!(matches!(
+        Renderer::<f32>::new(&bad, 8, 8),
+        Err(SceneError::NonFinite { what: "camera" })
+    ));
 }

@@ -21,6 +21,8 @@
 #![no_main]
 
 use core::hint::black_box;
+#[cfg(any(feature = "scene-flat", feature = "scene-gouraud"))]
+use sightline::camera::Camera;
 use sightline::math::Vec3;
 use sightline::pipeline::MeshVertex;
 use sightline::raster::DepthBuffer;
@@ -109,7 +111,7 @@ fn render() -> u64 {
         let Ok(objects) = scene.prepare(&mut vec3s[..], &mut objects) else {
             return 0;
         };
-        let Ok(renderer) = Renderer::<I16F16>::new(scene, WIDTH, HEIGHT) else {
+        let Ok(renderer) = renderer(scene) else {
             return 0;
         };
         let Ok(frame) = renderer.project(objects, &mut scratch[..]) else {
@@ -129,6 +131,46 @@ fn render() -> u64 {
         }
     }
     h
+}
+
+/// The flat and Gouraud firmwares choose their camera form at compile
+/// time (the cube's look-at, the bunny's angles) and pass the camera to
+/// `Renderer::with_camera`, so they link no camera solver; `tests/mcu/run`
+/// checks that. The full firmware takes any `CameraSpec` at run time.
+#[cfg(feature = "scene-flat")]
+fn renderer(scene: &Scene<'_>) -> Result<Renderer<I16F16>, ()> {
+    use sightline::scene::{CameraSpec, vec3};
+    let CameraSpec::LookAt { eye, target, up } = scene.camera else {
+        return Err(());
+    };
+    let camera = Camera::look_at(vec3(eye), vec3(target), vec3(up)).map_err(|_| ())?;
+    Renderer::with_camera(scene, camera, WIDTH, HEIGHT).map_err(|_| ())
+}
+
+#[cfg(feature = "scene-gouraud")]
+fn renderer(scene: &Scene<'_>) -> Result<Renderer<I16F16>, ()> {
+    use sightline::scalar::Scalar;
+    use sightline::scene::{CameraSpec, vec3};
+    use sightline::transform::Euler;
+    let CameraSpec::Angles {
+        position,
+        angles: [a, b, c],
+    } = scene.camera
+    else {
+        return Err(());
+    };
+    let angles = Euler::new(
+        I16F16::from_f32(a),
+        I16F16::from_f32(b),
+        I16F16::from_f32(c),
+    );
+    let camera = Camera::from_angles(vec3(position), angles);
+    Renderer::with_camera(scene, camera, WIDTH, HEIGHT).map_err(|_| ())
+}
+
+#[cfg(any(feature = "scene-texture", feature = "scene-all"))]
+fn renderer(scene: &Scene<'_>) -> Result<Renderer<I16F16>, ()> {
+    Renderer::new(scene, WIDTH, HEIGHT).map_err(|_| ())
 }
 
 fn hash_pixels(h: &mut u64, px: &[Color]) {

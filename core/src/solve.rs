@@ -56,6 +56,9 @@
 use crate::scalar::Scalar;
 use core::fmt;
 
+mod inverse;
+pub use inverse::{invert, invert_affine};
+
 /// Why a system could not be solved.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum SolveError {

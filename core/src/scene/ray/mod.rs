@@ -152,9 +152,7 @@ impl<'a, S: Scalar> RayScene<'a, S> {
         let mut objects = heapless::Vec::new();
         for (o, obj) in scene.objects.iter().enumerate() {
             let pose = shade::pose::<S>(&obj.pose);
-            let to_object = pose
-                .object_to_world()
-                .try_inverse()
+            let to_object = crate::solve::invert_affine(&pose.object_to_world())
                 .map_err(|_| SceneError::BadPose { object: o })?;
             let scale = S::from_f32(obj.mesh.scale);
             let bounds = bounds(obj.mesh.positions, scale);

@@ -73,7 +73,7 @@
 //! | [`camera`] | cameras from angles, orthonormal vectors or general vectors (via [`solve`]); projections |
 //! | [`pipeline`] | vertex formats chosen at compile time (xyz, +intensity, +uv, +both, perspective uv); Sutherland–Hodgman clipping in view space (near, far, four side planes with a guard band); projection to 28.4 sub-pixel coordinates and depth keys |
 //! | [`raster`] | integer scan conversion of convex polygons (28.4 sub-pixel, top-left rule) into spans; span shaders (flat, Gouraud, affine and perspective-correct textures, exact or subdivided); optional depth buffer |
-//! | [`texture`] | texture-mapping vectors (axis-edge fast path, any polygon via [`solve`]), the per-pixel perspective mapping, and the affine/perspective choice from a distortion bound |
+//! | [`texture`] | the one texel store and nearest-texel sampler ([`Texture`](texture::Texture), wrap modes) shared by raster, ray and scene; texture-mapping vectors (axis-edge fast path, any polygon via [`solve`]), the per-pixel perspective mapping, and the affine/perspective choice from a distortion bound |
 //! | [`target`] | span sinks: slice framebuffer with stride, bands for strip rendering, embedded-graphics `DrawTarget` adapter |
 //! | [`ray`] | screen→world: rays from a ray-casting camera, planes, polygons with four inclusion tests, spheres, watertight triangles, nearest hit, bounding boxes and spheres, a uniform grid, and a column caster over 2D grid maps |
 //! | [`scene`] | one borrowed scene description (meshes, poses, materials, light, camera), its prepared form in the render scalar, the raster renderer over it and the ray path, with one material model; built-in demo scenes as static data |
@@ -119,7 +119,7 @@
 //! |---|---|---|
 //! | `depth` | `raster::DepthBuffer` | |
 //! | `gouraud` | `raster::Gouraud`; Gouraud materials in [`scene::Renderer`] | |
-//! | `texture` | `texture`, the affine texture shaders; affine texture materials | |
+//! | `texture` | the mapping half of [`texture`] (vectors, screen mapping, `choose_mapping`; its texel store is always there, as scene descriptions name it), the affine texture shaders; affine texture materials | |
 //! | `perspective` | `raster::PerspectiveTexture`; perspective and `Auto` texture materials | `texture` |
 //! | `clip-far` | clipping at the far plane when asked ([`Pipeline::with_far_clip`](pipeline::Pipeline::with_far_clip), [`Renderer::with_far_clip`](scene::Renderer::with_far_clip)); without it geometry beyond `far` is drawn, its depth key saturated at the far value | |
 //! | `raycast` | `ray`, `scene::RayScene` | |
@@ -172,7 +172,6 @@ pub mod scalar;
 pub mod scene;
 pub mod solve;
 pub mod target;
-#[cfg(feature = "texture")]
 pub mod texture;
 pub mod transform;
 

@@ -131,6 +131,7 @@ fn exact_adjugate(a: &[[i64; 3]; 3]) -> ([[i128; 3]; 3], i128) {
 /// step of each of the two final divisions. The oracle `adj/det` is
 /// rounded once to f64 (2⁻⁵³ relative, below 1/32 of the f64 bound).
 /// Exactly singular integer matrices must give `None`.
+#[allow(clippy::needless_range_loop)] // indices mirror the matrix formulas
 fn mat3_inverse_matches_exact<T: Scalar>() -> f64 {
     let mut rng = Rng::new(77);
     let eps = T::EPSILON.to_f64();

@@ -3,6 +3,7 @@ use super::*;
 use crate::raster::{DepthBuffer, Shade};
 use crate::scalar::I16F16;
 use crate::target::Framebuffer;
+use crate::texture::{Texture, TextureError};
 use embedded_graphics::pixelcolor::IntoStorage;
 use std::vec;
 
@@ -120,25 +121,36 @@ fn validate_reports_bad_meshes_and_textures() {
     );
     let texels = [Color::new(0, 0, 0); 12];
     assert_eq!(
-        TextureData::new(&texels, 4, 3).err(),
-        Some(SceneError::TextureNotPowerOfTwo {
+        Texture::new(&texels, 4, 4, 4).err(),
+        Some(TextureError::TooShort {
+            needed: 16,
+            len: 12
+        })
+    );
+    let textured = |texture| {
+        [SceneObject {
+            mesh: &CUBE_MESH,
+            pose: Pose::default(),
+            material: Material::Texture {
+                texture,
+                mode: TextureMode::Auto,
+            },
+        }]
+    };
+    // A 4×3 texture is a valid store, but the scene tiles by powers of two.
+    let objects = textured(Texture::new(&texels, 4, 3, 4).unwrap());
+    let scene = Scene {
+        objects: &objects,
+        ..CUBE
+    };
+    assert_eq!(
+        scene.validate(),
+        Err(SceneError::TextureNotPowerOfTwo {
             width: 4,
             height: 3
         })
     );
-    assert_eq!(
-        TextureData::new(&texels, 4, 4).err(),
-        Some(SceneError::TextureSize)
-    );
-    let tex = TextureData::new(&texels[..8], 4, 2).unwrap();
-    let objects = [SceneObject {
-        mesh: &CUBE_MESH,
-        pose: Pose::default(),
-        material: Material::Texture {
-            texture: tex,
-            mode: TextureMode::Auto,
-        },
-    }];
+    let objects = textured(Texture::new(&texels[..8], 4, 2, 4).unwrap());
     let scene = Scene {
         objects: &objects,
         ..CUBE

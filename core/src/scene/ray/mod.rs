@@ -42,6 +42,7 @@ use crate::ray::Sphere;
 use crate::ray::{Aabb, Ray, RayCamera, ShearedRay, Triangle, TriangleHit};
 use crate::scalar::Scalar;
 use crate::target::Target;
+use crate::texture::RepeatPow2;
 
 #[derive(Clone, Copy, Debug)]
 struct RayObject<S> {
@@ -282,7 +283,7 @@ impl<'a, S: Scalar> RayScene<'a, S> {
             },
             RaySample::Texel { object, u, v } => match self.scene.objects.get(object) {
                 Some(o) => match o.material {
-                    Material::Texture { texture, .. } => texture.sample(u, v),
+                    Material::Texture { texture, .. } => texture.sample::<RepeatPow2>(u, v),
                     _ => bg,
                 },
                 None => bg,

@@ -65,19 +65,27 @@
 //!
 //! ## Layers (bottom to top)
 //!
-//! | module | what it holds |
-//! |---|---|
-//! | [`scalar`] | the [`Scalar`](scalar::Scalar) trait for `f32`, `f64` and [`Fx`](scalar::Fx) fixed point; overflow policy |
-//! | [`math`] | `Vec2/3/4`, `Mat3`, `Affine3` (3×4), `Mat4` |
-//! | [`solve`] | Gaussian elimination with partial pivoting, N×N with M right-hand sides, with pivot growth and the reciprocal condition number |
-//! | [`transform`] | object→world from roll, pitch, yaw and an origin |
-//! | [`camera`] | cameras from angles, orthonormal vectors or general vectors (via [`solve`]); projections |
-//! | [`pipeline`] | vertex formats chosen at compile time (xyz, +intensity, +uv, +both, perspective uv); Sutherland–Hodgman clipping in view space (near, far, four side planes with a guard band); projection to 28.4 sub-pixel coordinates and depth keys |
-//! | [`raster`] | integer scan conversion of convex polygons (28.4 sub-pixel, top-left rule) into spans; span shaders (flat, Gouraud, affine and perspective-correct textures, exact or subdivided); optional depth buffer |
-//! | [`texture`] | texture-mapping vectors (axis-edge fast path, any polygon via [`solve`]), the per-pixel perspective mapping, and the affine/perspective choice from a distortion bound |
-//! | [`target`] | span sinks: slice framebuffer with stride, bands for strip rendering, embedded-graphics `DrawTarget` adapter |
-//! | [`ray`] | screen→world: rays from a ray-casting camera, planes, polygons with four inclusion tests, spheres, watertight triangles, nearest hit, bounding boxes and spheres, a uniform grid, and a column caster over 2D grid maps |
-//! | [`scene`] | in rooms: the borrowed description (meshes, poses, materials, light, camera), hand-made descriptions, the prepared scene in the render scalar, the raster renderer and the ray renderer over it, the one material model they share, and the demo scenes as static data (feature `demo`) |
+//! Every module uses only modules above it in this table (its *uses*
+//! column, which the unit test `layer_tests` checks against the source
+//! text: a module that names another outside its list, or one listed
+//! below itself, fails the build's tests).
+//!
+//! | module | what it holds | uses |
+//! |---|---|---|
+//! | [`scalar`] | the [`Scalar`](scalar::Scalar) trait for `f32`, `f64` and [`Fx`](scalar::Fx) fixed point; overflow policy | — |
+//! | [`math`] | `Vec2/3/4`, `Mat3` (with a direct adjugate inverse), `Affine3` (3×4), `Mat4` | `scalar` |
+//! | [`solve`] | Gaussian elimination with partial pivoting, N×N with M right-hand sides, with pivot growth and the reciprocal condition number; inverses with those diagnostics | `scalar`, `math` |
+//! | [`texture`] | the one texel store and nearest-texel sampler ([`Texture`](texture::Texture), wrap modes) shared by raster, ray and scene; texture-mapping vectors (axis-edge fast path, any polygon via [`solve`]), the per-pixel perspective mapping, and the affine/perspective choice from a distortion bound | `scalar`, `math`, `solve` |
+//! | [`transform`] | object→world from roll, pitch, yaw and an origin | `scalar`, `math` |
+//! | [`camera`] | cameras from angles, orthonormal vectors or general vectors (via [`solve`]); projections | `scalar`, `math`, `solve`, `transform` |
+//! | [`target`] | span sinks: slice framebuffer with stride, bands for strip rendering, embedded-graphics `DrawTarget` adapter | — |
+//! | [`raster`] | integer scan conversion of convex polygons (28.4 sub-pixel, top-left rule) into spans; span shaders (flat, Gouraud, affine and perspective-correct textures, exact or subdivided); optional depth buffer | `scalar`, `texture`, `target` |
+//! | [`pipeline`] | vertex formats chosen at compile time (xyz, +intensity, +uv, +both, perspective uv); Sutherland–Hodgman clipping in view space (near, far, four side planes with a guard band); projection to 28.4 sub-pixel coordinates and depth keys, handed to [`raster`] | `scalar`, `math`, `camera`, `target`, `raster` |
+//! | [`ray`] | screen→world: rays from a ray-casting camera, planes, polygons with four inclusion tests, spheres, watertight triangles, nearest hit, bounding boxes and spheres, a uniform grid, and a column caster over 2D grid maps | `scalar`, `math`, `solve`, `texture`, `camera`, `target` |
+//! | [`scene`] | in rooms: the borrowed description (meshes, poses, materials, light, camera), hand-made descriptions, the prepared scene in the render scalar, the raster renderer and the ray renderer over it, the one material model they share, and the demo scenes as static data (feature `demo`) | `scalar`, `math`, `solve`, `texture`, `transform`, `camera`, `target`, `raster`, `pipeline`, `ray` |
+//!
+//! The pipeline sits above the raster: the scan converter knows nothing
+//! of vertices or clipping, and the pipeline hands it projected polygons.
 //!
 //! ## Coordinate conventions
 //!
@@ -120,7 +128,7 @@
 //! |---|---|---|
 //! | `depth` | `raster::DepthBuffer` | |
 //! | `gouraud` | `raster::Gouraud`; Gouraud materials in [`scene::Renderer`] | |
-//! | `texture` | `texture`, the affine texture shaders; affine texture materials | |
+//! | `texture` | the mapping half of [`texture`] (vectors, screen mapping, `choose_mapping`; its texel store is always there, as scene descriptions name it), the affine texture shaders; affine texture materials | |
 //! | `perspective` | `raster::PerspectiveTexture`; perspective and `Auto` texture materials | `texture` |
 //! | `clip-far` | clipping at the far plane when asked ([`Pipeline::with_far_clip`](pipeline::Pipeline::with_far_clip), [`Renderer::with_far_clip`](scene::Renderer::with_far_clip)); without it geometry beyond `far` is drawn, its depth key saturated at the far value | |
 //! | `raycast` | `ray`, `scene::RayScene` | |
@@ -175,9 +183,12 @@ pub mod scalar;
 pub mod scene;
 pub mod solve;
 pub mod target;
-#[cfg(feature = "texture")]
 pub mod texture;
 pub mod transform;
+
+// Checks the layer table above against the source text.
+#[cfg(test)]
+mod layer_tests;
 
 // Shared by the test modules; a build with fewer stages runs fewer of them.
 #[cfg(test)]

@@ -122,6 +122,8 @@ use core::fmt;
 
 mod refine;
 pub use refine::{MAX_REFINEMENT_STEPS, REFINE_ABOVE_RATIO, RESIDUAL_RATIO_MAX};
+mod inverse;
+pub use inverse::{invert, invert_affine};
 
 /// Why a system could not be solved.
 #[derive(Clone, Copy, Debug, PartialEq)]

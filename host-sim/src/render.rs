@@ -344,8 +344,8 @@ fn brick_textures() -> (Vec<Color>, Vec<Color>) {
 /// # Errors
 /// The caster's error, as text (not for the built-in map).
 pub fn maze<S: Scalar>(width: u16, height: u16) -> Result<Image, String> {
-    use sightline::raster::Texture;
     use sightline::ray::column::{Column, ColumnCamera, ColumnStyle, render_columns};
+    use sightline::texture::Texture;
     let map = &sightline::scene::builtin::COLUMN_MAP;
     let focus = S::from_f64(width as f64 / 2.0 / (MAZE_FOV / 2.0).tan());
     let cam = ColumnCamera::<S>::at_start(map, focus, width, height).map_err(|e| e.to_string())?;

@@ -15,10 +15,11 @@ use sightline::camera::Projection;
 use sightline::math::Vec3;
 use sightline::pipeline::{Intensity, Pipeline, Uv, UvPerspective, Varyings, Vertex};
 use sightline::raster::{
-    AffineTexture, DepthBuffer, Flat, Gouraud, NoDepth, PerspectiveTexture, RepeatPow2,
-    ScreenVertex, Shade, Texture, fill_polygon,
+    AffineTexture, DepthBuffer, Flat, Gouraud, NoDepth, PerspectiveTexture, ScreenVertex, Shade,
+    fill_polygon,
 };
 use sightline::target::Framebuffer;
+use sightline::texture::{RepeatPow2, Texture};
 
 /// Which shader fills the polygon.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

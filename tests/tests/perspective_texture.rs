@@ -24,11 +24,11 @@ use sightline::camera::Projection;
 use sightline::math::Vec3;
 use sightline::pipeline::{Pipeline, Uv, UvPerspective, Vertex};
 use sightline::raster::{
-    AffineTexture, NoDepth, PERSPECTIVE_Q_BITS, PerspectiveTexture, RepeatPow2, SUBPIXEL_BITS,
-    SpanShader, Texture,
+    AffineTexture, NoDepth, PERSPECTIVE_Q_BITS, PerspectiveTexture, SUBPIXEL_BITS, SpanShader,
 };
 use sightline::scalar::Scalar;
 use sightline::target::Framebuffer;
+use sightline::texture::{RepeatPow2, Texture};
 
 const W: u16 = 160;
 const H: u16 = 120;

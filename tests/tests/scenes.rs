@@ -29,6 +29,7 @@
 use sightline::raster::Shade;
 use sightline::scalar::{I16F16, Scalar};
 use sightline::scene::{Color, Material, RaySample, Scene, builtin};
+use sightline::texture::RepeatPow2;
 use sightline_sim::compare_images;
 use sightline_sim::image::{Image, read_png_rgb8, write_rgb8_png};
 use sightline_sim::render::{self, Method, ScalarKind};
@@ -116,7 +117,7 @@ fn within_one_step(scene: &Scene<'_>, sample: RaySample, raster: Color) -> bool 
         RaySample::Texel { object, u, v } => match scene.objects[object].material {
             Material::Texture { texture, .. } => (-1..=1)
                 .flat_map(|du| (-1..=1).map(move |dv| (du, dv)))
-                .any(|(du, dv)| texture.sample(u + du, v + dv) == raster),
+                .any(|(du, dv)| texture.sample::<RepeatPow2>(u + du, v + dv) == raster),
             _ => false,
         },
         _ => false,

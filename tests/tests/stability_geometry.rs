@@ -20,12 +20,13 @@ use sightline::camera::{Camera, CameraError, Projection};
 use sightline::math::{Affine3, Mat3, Vec3};
 use sightline::pipeline::{DrawError, Pipeline, PipelineError, Uv, UvPerspective, Vertex};
 use sightline::raster::{
-    AffineTexture, COORD_LIMIT, FillOutcome, Flat, NoDepth, PerspectiveTexture, RepeatPow2,
-    ScreenVertex, Texture, fill_polygon,
+    AffineTexture, COORD_LIMIT, FillOutcome, Flat, NoDepth, PerspectiveTexture, ScreenVertex,
+    fill_polygon,
 };
 use sightline::ray::{Plane, Polygon, Ray, Roots, Sphere};
 use sightline::scalar::{I16F16, Scalar};
 use sightline::target::Framebuffer;
+use sightline::texture::{RepeatPow2, Texture};
 
 const W: u16 = 64;
 const FOCUS: f64 = 32.0;

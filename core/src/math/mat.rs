@@ -6,7 +6,6 @@
 
 use super::vec::{Vec3, Vec4};
 use crate::scalar::Scalar;
-use crate::solve::{self, SolveError};
 use core::ops::Mul;
 
 /// A 3×3 matrix (rotation, scale, shear).
@@ -98,15 +97,45 @@ impl<S: Scalar> Mat3<S> {
     pub fn determinant(&self) -> S {
         self.row(0).dot(self.row(1).cross(self.row(2)))
     }
-    /// The inverse, by Gaussian elimination with partial pivoting on
-    /// `M X = I` (see [`crate::solve`]).
+    /// The inverse from the adjugate, `M⁻¹ = adj(M)/det(M)`, or `None`
+    /// when `M` is singular to working precision, not finite, or its
+    /// inverse overflows the representation.
     ///
-    /// # Errors
-    /// Whatever the solver reports: singular, ill-conditioned to working
-    /// precision, overflow or non-finite input.
-    pub fn try_inverse(&self) -> Result<Self, SolveError> {
-        let s = solve::solve(&self.m, &Self::IDENTITY.m)?;
-        Ok(Self { m: s.x })
+    /// Each row is first divided by its largest |entry| (`N = D⁻¹M`, so
+    /// `M⁻¹ = N⁻¹D⁻¹`): the cofactors of N lie in [−2, 2] and its
+    /// determinant in [−3√3, 3√3] (Hadamard), whatever the scale of `M`,
+    /// so fixed point neither saturates nor loses its resolution there.
+    /// `None` when `|det N| ≤ 32·ε`: the computed determinant of a matrix
+    /// that is exactly singular (with exactly stored rows) is at most
+    /// about 24·ε for floats (the rounding of N and of the triple product)
+    /// and 27 grid steps for fixed point, so every such matrix is refused.
+    ///
+    /// No solver is involved: this is three cross products, a dot product
+    /// and nine divisions. [`crate::solve::invert`] is the pivoting solver's
+    /// inverse with its diagnostics (growth, condition number) and a
+    /// reason when it fails.
+    #[must_use]
+    pub fn try_inverse(&self) -> Option<Self> {
+        let mut n = [Vec3::ZERO; 3];
+        let mut s = [S::ZERO; 3];
+        for i in 0..3 {
+            let r = self.row(i);
+            let si = r.max_abs();
+            if si == S::ZERO || !r.is_finite() || !si.is_finite() {
+                return None;
+            }
+            s[i] = si;
+            n[i] = div3(r, si)?;
+        }
+        // Columns of adj(N): N·(n₁×n₂) = (det, 0, 0) and so on.
+        let c = [n[1].cross(n[2]), n[2].cross(n[0]), n[0].cross(n[1])];
+        let det = n[0].dot(c[0]);
+        let tiny = S::EPSILON * S::from_i32(32);
+        if det.abs().partial_cmp(&tiny) != Some(core::cmp::Ordering::Greater) {
+            return None;
+        }
+        let col = |j: usize| div3(div3(c[j], det)?, s[j]);
+        Some(Self::from_cols(col(0)?, col(1)?, col(2)?))
     }
     /// Rotation by `angle` radians about +X (right-handed: Y turns toward Z).
     #[must_use]
@@ -222,11 +251,13 @@ impl<S: Scalar> Affine3<S> {
     }
     /// The inverse transform `p ↦ M⁻¹(p − t)`.
     ///
-    /// # Errors
-    /// As [`Mat3::try_inverse`].
-    pub fn try_inverse(&self) -> Result<Self, SolveError> {
+    /// `None` as [`Mat3::try_inverse`], or when the new translation is
+    /// not finite.
+    #[must_use]
+    pub fn try_inverse(&self) -> Option<Self> {
         let inv = self.matrix.try_inverse()?;
-        Ok(Self::new(inv, -inv.mul_vec3(self.translation)))
+        let t = -inv.mul_vec3(self.translation);
+        t.is_finite().then(|| Self::new(inv, t))
     }
     /// As a 4×4 matrix with last row (0, 0, 0, 1).
     #[must_use]
@@ -319,14 +350,6 @@ impl<S: Scalar> Mat4<S> {
         );
         (!overflow && r.is_finite()).then_some(r)
     }
-    /// The inverse, by Gaussian elimination with partial pivoting.
-    ///
-    /// # Errors
-    /// Whatever the solver reports.
-    pub fn try_inverse(&self) -> Result<Self, SolveError> {
-        let s = solve::solve(&self.m, &Self::IDENTITY.m)?;
-        Ok(Self { m: s.x })
-    }
 }
 
 impl<S: Scalar> Mul for Mat4<S> {
@@ -340,4 +363,14 @@ impl<S: Scalar> From<Affine3<S>> for Mat4<S> {
     fn from(a: Affine3<S>) -> Self {
         a.to_mat4()
     }
+}
+
+/// `v / d` per component, or `None` on overflow or a non-finite result.
+fn div3<S: Scalar>(v: Vec3<S>, d: S) -> Option<Vec3<S>> {
+    let r = Vec3::new(
+        v.x.checked_div(d)?,
+        v.y.checked_div(d)?,
+        v.z.checked_div(d)?,
+    );
+    r.is_finite().then_some(r)
 }

@@ -105,8 +105,130 @@ fn mat4_projection_rejects_w_zero<T: Scalar>() {
     m.m[3] = [T::ZERO, T::ZERO, T::ONE, T::ZERO]; // w = z
     assert_eq!(m.project_point3(v3(1.0, 2.0, 0.0)), None);
     assert_eq!(m.project_point3(v3(1.0, 2.0, 2.0)), Some(v3(0.5, 1.0, 1.0)));
-    let inv = m.try_inverse();
-    assert!(inv.is_err(), "the last row makes this matrix singular");
+}
+
+/// The exact inverse of an integer matrix: `adj(A)` and `det(A)` in i128.
+fn exact_adjugate(a: &[[i64; 3]; 3]) -> ([[i128; 3]; 3], i128) {
+    let e = |i: usize, j: usize| a[i % 3][j % 3] as i128;
+    let mut adj = [[0i128; 3]; 3];
+    for (i, row) in adj.iter_mut().enumerate() {
+        for (j, x) in row.iter_mut().enumerate() {
+            // Cofactor C_ji (transposed), by cyclic indices.
+            *x = e(j + 1, i + 1) * e(j + 2, i + 2) - e(j + 1, i + 2) * e(j + 2, i + 1);
+        }
+    }
+    let det = (0..3).map(|k| a[0][k] as i128 * adj[k][0]).sum();
+    (adj, det)
+}
+
+/// `Mat3::try_inverse` against the exact rational inverse of random
+/// integer matrices (exact in every scalar), with the first-order error
+/// bound of the row-scaled adjugate: for `N = D⁻¹A` (rows of largest
+/// |entry| 1) the computed inverse's error is at most `K·ε·κ∞(N)·‖N⁻¹‖∞`
+/// scaled back by the column's row scale, `K = 16` (the rounding of N, of
+/// the three cross products and of the triple product, each γ₂…γ₅ on
+/// terms ≤ 1, and two divisions), plus for fixed point the absolute grid
+/// step of each of the two final divisions. The oracle `adj/det` is
+/// rounded once to f64 (2⁻⁵³ relative, below 1/32 of the f64 bound).
+/// Exactly singular integer matrices must give `None`.
+#[allow(clippy::needless_range_loop)] // indices mirror the matrix formulas
+fn mat3_inverse_matches_exact<T: Scalar>() -> f64 {
+    let mut rng = Rng::new(77);
+    let eps = T::EPSILON.to_f64();
+    let mut worst = 0.0f64;
+    let mut tested = 0;
+    for trial in 0..4000 {
+        let mut a = [[0i64; 3]; 3];
+        for x in a.iter_mut().flatten() {
+            *x = rng.range(-20.0, 21.0).floor() as i64;
+        }
+        if trial % 4 == 0 {
+            // An exactly singular matrix: row 2 = p·row 0 + q·row 1.
+            let (p, q) = (
+                rng.range(-2.0, 3.0).floor() as i64,
+                rng.range(-2.0, 3.0).floor() as i64,
+            );
+            for j in 0..3 {
+                a[2][j] = p * a[0][j] + q * a[1][j];
+            }
+        }
+        let (adj, det) = exact_adjugate(&a);
+        let m = Mat3 {
+            m: a.map(|r| r.map(|x| T::from_i32(x as i32))),
+        };
+        let inv = m.try_inverse();
+        if det == 0 {
+            assert_eq!(inv, None, "{}: singular {a:?}", T::NAME);
+            continue;
+        }
+        let exact = |i: usize, j: usize| adj[i][j] as f64 / det as f64;
+        let s: [f64; 3] =
+            core::array::from_fn(|i| a[i].iter().map(|x| x.abs()).max().unwrap() as f64);
+        // κ∞(N) = ‖N‖∞·‖N⁻¹‖∞ with N⁻¹ = A⁻¹·D.
+        let norm_n = (0..3)
+            .map(|i| a[i].iter().map(|&x| x.abs() as f64).sum::<f64>() / s[i])
+            .fold(0.0, f64::max);
+        let norm_ninv = (0..3)
+            .map(|i| (0..3).map(|j| (exact(i, j) * s[j]).abs()).sum::<f64>())
+            .fold(0.0, f64::max);
+        let kappa = norm_n * norm_ninv;
+        let fixed_step = if T::IS_FLOAT { 0.0 } else { 2.0 * eps };
+        // Near-singular to working precision: `None` is allowed there.
+        if kappa * eps > 1e-3 {
+            continue;
+        }
+        let inv = inv.unwrap_or_else(|| panic!("{}: {a:?} (κ = {kappa}) refused", T::NAME));
+        tested += 1;
+        for i in 0..3 {
+            for j in 0..3 {
+                let err = (inv.m[i][j].to_f64() - exact(i, j)).abs();
+                let bound = 16.0 * eps * kappa * norm_ninv / s[j] + fixed_step;
+                worst = worst.max(err / bound);
+                assert!(
+                    err <= bound,
+                    "{}: {a:?} entry ({i},{j}): {} vs {} (err {err:e} > {bound:e})",
+                    T::NAME,
+                    inv.m[i][j].to_f64(),
+                    exact(i, j)
+                );
+            }
+        }
+    }
+    assert!(tested > 2000, "{}: only {tested} matrices tested", T::NAME);
+    worst
+}
+
+#[test]
+fn mat3_inverse_is_exact_to_its_bound() {
+    let w = [
+        mat3_inverse_matches_exact::<f64>(),
+        mat3_inverse_matches_exact::<f32>(),
+        mat3_inverse_matches_exact::<I16F16>(),
+    ];
+    std::println!("worst error / bound (f64, f32, I16F16): {w:?}");
+}
+
+/// Non-finite entries and zero rows are refused, not propagated.
+#[test]
+fn mat3_inverse_refuses_bad_input() {
+    let mut m = Mat3::<f32>::IDENTITY;
+    m.m[1][2] = f32::NAN;
+    assert_eq!(m.try_inverse(), None);
+    m.m[1][2] = f32::INFINITY;
+    assert_eq!(m.try_inverse(), None);
+    let mut z = Mat3::<I16F16>::IDENTITY;
+    z.m[2] = [I16F16::ZERO; 3];
+    assert_eq!(z.try_inverse(), None);
+    // A large scale: the inverse's entries would be below the fixed-point
+    // grid, but row scaling keeps them (1/20000 is 3 grid steps).
+    let big = Mat3::<I16F16>::from_diagonal(Vec3::new(
+        I16F16::from_i32(20000),
+        I16F16::from_i32(2),
+        I16F16::from_i32(-4),
+    ));
+    let inv = big.try_inverse().unwrap();
+    assert!((inv.m[0][0].to_f64() - 1.0 / 20000.0).abs() <= I16F16::EPSILON.to_f64());
+    assert_eq!(inv.m[2][2].to_f64(), -0.25);
 }
 
 macro_rules! math_suite {

@@ -500,7 +500,8 @@ fn floor_mismatches(buf: &[u16; 32 * 24], margin: f64) -> (usize, usize) {
 }
 
 fn perspective_texture_matches_ray_cast<S: Scalar>() {
-    use crate::raster::{AffineTexture, PerspectiveTexture, RepeatPow2, Texture};
+    use crate::raster::{AffineTexture, PerspectiveTexture};
+    use crate::texture::{RepeatPow2, Texture};
     // Texel (i, j) of the 8×16 texture holds j·8 + i.
     let data: [u16; 128] = core::array::from_fn(|k| k as u16);
     let tex = Texture::new(&data, 8, 16, 8).unwrap();

@@ -26,7 +26,7 @@
 //! | piece | choices (all compile-time) |
 //! |---|---|
 //! | shader ([`SpanShader`]) | [`Flat`], [`Gouraud`] (colour ramp), [`AffineTexture`], [`LitAffineTexture`] (texture × intensity), [`PerspectiveTexture`] (exact, or runs of N) |
-//! | wrap ([`Wrap`]) | [`Repeat`], [`RepeatPow2`], [`Clamp`] |
+//! | texels | a [`Texture`](crate::texture::Texture) (the crate's one texel store), wrapped by a [`Wrap`](crate::texture::Wrap) type: [`Repeat`](crate::texture::Repeat), [`RepeatPow2`](crate::texture::RepeatPow2), [`Clamp`](crate::texture::Clamp) |
 //! | depth ([`DepthTest`]) | [`NoDepth`] (free), [`DepthBuffer`] (u16 keys, or u32 24.8 depths; less-than) |
 //! | target | anything implementing [`Target`] |
 //!
@@ -74,7 +74,7 @@ pub use shader::{Flat, Shade, SpanShader, VARYING_FRAC_BITS};
 #[cfg(feature = "perspective")]
 pub use texture::PerspectiveTexture;
 #[cfg(feature = "texture")]
-pub use texture::{AffineTexture, Clamp, LitAffineTexture, Repeat, RepeatPow2, Texture, Wrap};
+pub use texture::{AffineTexture, LitAffineTexture};
 
 /// Fractional bits of the perspective varying `q = near/z ∈ (0, 1]`.
 pub const PERSPECTIVE_Q_BITS: u32 = 24;

@@ -1,6 +1,7 @@
 use super::*;
 use crate::target::{Band, Framebuffer};
 use crate::test_util::{MockTarget, oracle_covers, sp, sv};
+use crate::texture::{Clamp, Repeat, RepeatPow2, Texture};
 use proptest::prelude::*;
 use std::vec;
 use std::vec::Vec;
@@ -593,32 +594,6 @@ proptest! {
 fn checker() -> [char; 16] {
     // 4×4 texels: row j, column i is a letter from "abcd" + row offset.
     core::array::from_fn(|k| char::from(b'a' + (k % 4) as u8 + 4 * (k / 4) as u8))
-}
-
-#[test]
-fn texture_validates_and_wraps() {
-    let t = [1u8, 2, 3, 4, 5, 6];
-    assert_eq!(
-        Texture::new(&t[..0], 0, 1, 0).unwrap_err(),
-        crate::target::BufferError::BadTextureSize
-    );
-    assert!(Texture::new(&t, 3, 3, 3).is_err());
-    let tex = Texture::new(&t, 3, 2, 3).unwrap();
-    assert_eq!(tex.sample::<Repeat>(-1, 0), 3);
-    assert_eq!(tex.sample::<Repeat>(4, 3), 5);
-    assert_eq!(tex.sample::<Clamp>(-7, 9), 4);
-    assert_eq!(tex.sample::<Clamp>(99, -9), 3);
-    // RepeatPow2 refuses a 3-wide texture but still samples in bounds.
-    assert!(AffineTexture::<u8, RepeatPow2>::new(tex).is_none());
-    assert!(AffineTexture::<u8, Repeat>::new(tex).is_some());
-    for i in -9..9 {
-        let _ = tex.sample::<RepeatPow2>(i, i * 7);
-    }
-    let t4 = [0u8; 8];
-    let tex = Texture::new(&t4, 4, 2, 4).unwrap();
-    assert!(AffineTexture::<u8, RepeatPow2>::new(tex).is_some());
-    assert_eq!(RepeatPow2::wrap(-1, 4), 3);
-    assert_eq!(RepeatPow2::wrap(9, 4), 1);
 }
 
 #[test]

@@ -1,10 +1,8 @@
-//! Texture-mapping span shaders: nearest-texel sampling from a
-//! caller-supplied slice, affine or perspective-correct.
-//!
-//! Texel (i, j) covers `[i, i+1) × [j, j+1)` in texture coordinates, so a
-//! sample at (u, v) reads texel `(⌊u⌋, ⌊v⌋)` after wrapping. The wrap mode
-//! is a type parameter ([`Repeat`], [`RepeatPow2`], [`Clamp`]): no per-pixel
-//! branch on it, and the power-of-two fast path is one AND per axis.
+//! Texture-mapping span shaders: nearest-texel sampling of a
+//! [`Texture`] through [`Texture::sample`] (the crate's one texel store
+//! and sampler, in [`crate::texture`]), affine or perspective-correct.
+//! The wrap mode is a type parameter ([`Wrap`]): no per-pixel branch on
+//! it, and [`RepeatPow2`](crate::texture::RepeatPow2) is one AND per axis.
 //!
 //! - [`AffineTexture`] interpolates (u, v) linearly in screen space: exact
 //!   for parallel projection and for polygons parallel to the screen,
@@ -26,134 +24,8 @@ use super::persp_div::divide;
 use super::shader::{Shade, SpanShader, VARYING_FRAC_BITS};
 #[cfg(feature = "perspective")]
 use crate::target::Target;
-use crate::target::{BufferError, layout::Layout};
-use core::fmt::Debug;
-
-/// A read-only texture over a caller-supplied slice, row-major with a
-/// stride.
-///
-/// # Guarantees
-///
-/// Validated once by [`Texture::new`]; sampling never panics and never
-/// reads outside the slice, for any texture coordinates.
-#[derive(Clone, Copy, Debug)]
-pub struct Texture<'a, C> {
-    texels: &'a [C],
-    /// The first texel: what `sample` would return if an index were ever
-    /// out of range (it cannot be; this avoids a panicking index).
-    fallback: C,
-    width: u16,
-    height: u16,
-    stride: usize,
-}
-
-impl<'a, C: Copy> Texture<'a, C> {
-    /// Wraps `texels` as `width`×`height` texels, `stride` apart.
-    ///
-    /// # Errors
-    /// As [`Framebuffer::new`](crate::target::Framebuffer::new), and
-    /// [`BufferError::BadTextureSize`] for a zero width or height.
-    pub fn new(
-        texels: &'a [C],
-        width: u16,
-        height: u16,
-        stride: usize,
-    ) -> Result<Self, BufferError> {
-        if width == 0 || height == 0 {
-            return Err(BufferError::BadTextureSize);
-        }
-        Layout::new(texels.len(), width, height, stride, 0)?;
-        // Non-empty: width, height ≥ 1 and the length was validated.
-        let &fallback = texels.first().ok_or(BufferError::BadTextureSize)?;
-        Ok(Self {
-            texels,
-            fallback,
-            width,
-            height,
-            stride,
-        })
-    }
-
-    /// Width in texels.
-    #[must_use]
-    pub fn width(&self) -> u16 {
-        self.width
-    }
-
-    /// Height in texels.
-    #[must_use]
-    pub fn height(&self) -> u16 {
-        self.height
-    }
-
-    /// The texel at integer coordinates, wrapped with `W`.
-    #[inline]
-    #[must_use]
-    pub fn sample<W: Wrap>(&self, u: i32, v: i32) -> C {
-        let x = W::wrap(u, self.width) as usize;
-        let y = W::wrap(v, self.height) as usize;
-        // x < width, y < height, so the index is below
-        // stride·(height−1) + width ≤ len (validated in `new`); `get`
-        // keeps that local.
-        match self.texels.get(y * self.stride + x) {
-            Some(&c) => c,
-            None => self.fallback,
-        }
-    }
-}
-
-/// How integer texel coordinates outside the texture map inside.
-pub trait Wrap: Copy + Debug + Default {
-    /// Whether a texture side of `n` texels is supported.
-    fn accepts(n: u16) -> bool;
-    /// Maps `i` into `0..n` (`n ≥ 1`, and accepted).
-    fn wrap(i: i32, n: u16) -> u16;
-}
-
-/// Tiles the texture: `i mod n`.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Repeat;
-
-/// Tiles a texture whose sides are powers of two: `i & (n − 1)`, one AND.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct RepeatPow2;
-
-/// Repeats the edge texels: `clamp(i, 0, n − 1)`.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Clamp;
-
-impl Wrap for Repeat {
-    fn accepts(n: u16) -> bool {
-        n > 0
-    }
-    #[inline]
-    fn wrap(i: i32, n: u16) -> u16 {
-        i.rem_euclid(n.max(1) as i32) as u16
-    }
-}
-
-impl Wrap for RepeatPow2 {
-    fn accepts(n: u16) -> bool {
-        n.is_power_of_two()
-    }
-    #[inline]
-    fn wrap(i: i32, n: u16) -> u16 {
-        // An AND never exceeds its mask, so the result is ≤ n − 1 for any
-        // n ≥ 1 (in bounds); it equals i mod n only for powers of two,
-        // which is what `accepts` checks.
-        (i & (n.max(1) as i32 - 1)) as u16
-    }
-}
-
-impl Wrap for Clamp {
-    fn accepts(n: u16) -> bool {
-        n > 0
-    }
-    #[inline]
-    fn wrap(i: i32, n: u16) -> u16 {
-        i.clamp(0, n as i32 - 1) as u16
-    }
-}
+use crate::texture::{Texture, Wrap};
+use core::marker::PhantomData;
 
 /// Affine texture mapping: varyings (u, v) in texels, 16.16.
 ///
@@ -162,17 +34,17 @@ impl Wrap for Clamp {
 #[derive(Clone, Copy, Debug)]
 pub struct AffineTexture<'a, C, W> {
     tex: Texture<'a, C>,
-    wrap: W,
+    wrap: PhantomData<W>,
 }
 
 impl<'a, C: Copy, W: Wrap> AffineTexture<'a, C, W> {
     /// An affine texture shader; `None` if `W` does not accept the
-    /// texture's size ([`RepeatPow2`] needs powers of two).
+    /// texture's size ([`RepeatPow2`](crate::texture::RepeatPow2) needs powers of two).
     #[must_use]
     pub fn new(tex: Texture<'a, C>) -> Option<Self> {
-        (W::accepts(tex.width) && W::accepts(tex.height)).then(|| Self {
+        tex.accepts::<W>().then_some(Self {
             tex,
-            wrap: W::default(),
+            wrap: PhantomData,
         })
     }
 }
@@ -182,7 +54,6 @@ impl<C: Copy, W: Wrap> SpanShader<2> for AffineTexture<'_, C, W> {
 
     #[inline]
     fn color(&self, v: &[i32; 2]) -> C {
-        let _ = self.wrap;
         self.tex
             .sample::<W>(v[0] >> VARYING_FRAC_BITS, v[1] >> VARYING_FRAC_BITS)
     }
@@ -199,7 +70,7 @@ impl<C: Copy, W: Wrap> SpanShader<2> for AffineTexture<'_, C, W> {
 #[derive(Clone, Copy, Debug)]
 pub struct LitAffineTexture<'a, C, W> {
     tex: Texture<'a, C>,
-    wrap: W,
+    wrap: PhantomData<W>,
 }
 
 impl<'a, C: Shade, W: Wrap> LitAffineTexture<'a, C, W> {
@@ -207,9 +78,9 @@ impl<'a, C: Shade, W: Wrap> LitAffineTexture<'a, C, W> {
     /// texture's size.
     #[must_use]
     pub fn new(tex: Texture<'a, C>) -> Option<Self> {
-        (W::accepts(tex.width) && W::accepts(tex.height)).then(|| Self {
+        tex.accepts::<W>().then_some(Self {
             tex,
-            wrap: W::default(),
+            wrap: PhantomData,
         })
     }
 }
@@ -219,7 +90,6 @@ impl<C: Shade, W: Wrap> SpanShader<3> for LitAffineTexture<'_, C, W> {
 
     #[inline]
     fn color(&self, v: &[i32; 3]) -> C {
-        let _ = self.wrap;
         // The intensity varying shares the default range with u and v, so
         // clamp it into 0..=255 here.
         let i = (v[0] >> VARYING_FRAC_BITS).clamp(0, 255) as u8;
@@ -244,7 +114,7 @@ impl<C: Shade, W: Wrap> SpanShader<3> for LitAffineTexture<'_, C, W> {
 #[derive(Clone, Copy, Debug)]
 pub struct PerspectiveTexture<'a, C, W, const N: u32> {
     tex: Texture<'a, C>,
-    wrap: W,
+    wrap: PhantomData<W>,
 }
 
 #[cfg(feature = "perspective")]
@@ -253,9 +123,9 @@ impl<'a, C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'a, C, W, N> {
     /// texture's size.
     #[must_use]
     pub fn new(tex: Texture<'a, C>) -> Option<Self> {
-        (W::accepts(tex.width) && W::accepts(tex.height)).then(|| Self {
+        tex.accepts::<W>().then_some(Self {
             tex,
-            wrap: W::default(),
+            wrap: PhantomData,
         })
     }
 }
@@ -312,7 +182,6 @@ impl<C: Copy, W: Wrap, const N: u32> SpanShader<3> for PerspectiveTexture<'_, C,
 
     #[inline]
     fn color(&self, v: &[i32; 3]) -> C {
-        let _ = self.wrap;
         let (u, t) = divide(v);
         self.tex.sample::<W>(texel_coord(u), texel_coord(t))
     }

@@ -70,9 +70,9 @@
 //! column, as does one whose distance overflows the scalar.
 
 use crate::math::Vec2;
-use crate::raster::{Clamp, Texture};
 use crate::scalar::Scalar;
 use crate::target::Target;
+use crate::texture::{Clamp, Texture};
 use core::fmt;
 
 /// A grid map for the column caster: `cells` row-major, `b'.'` free and

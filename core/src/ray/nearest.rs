@@ -4,7 +4,7 @@
 //! Each [`Object`] holds a shape in its own object space and its
 //! object→world transform (for example a [`Pose`](crate::transform::Pose)'s
 //! [`object_to_world`](crate::transform::Pose::object_to_world)), and the
-//! inverse computed once with [`Affine3::try_inverse`]. A world ray is
+//! inverse computed once with [`solve::invert_affine`]. A world ray is
 //! carried into object space by the inverse; an affine map keeps the ray
 //! parameter, so `t` compares across objects unchanged, and the
 //! object-space hit point (for texture coordinates) comes for free.
@@ -15,7 +15,7 @@ use super::wide::point_at;
 use super::{Mesh, Plane, Polygon, Ray, SlabIndex, Triangle};
 use crate::math::{Affine3, Vec3};
 use crate::scalar::Scalar;
-use crate::solve::SolveError;
+use crate::solve::{self, SolveError};
 use core::fmt;
 
 /// A hit on a shape, in the shape's own space.
@@ -153,9 +153,7 @@ impl<S: Scalar, P: Intersect<S>> Object<S, P> {
     /// # Errors
     /// [`ObjectError::Singular`] when the transform cannot be inverted.
     pub fn new(shape: P, object_to_world: Affine3<S>) -> Result<Self, ObjectError> {
-        let to_object = object_to_world
-            .try_inverse()
-            .map_err(ObjectError::Singular)?;
+        let to_object = solve::invert_affine(&object_to_world).map_err(ObjectError::Singular)?;
         Ok(Self {
             shape,
             to_world: object_to_world,

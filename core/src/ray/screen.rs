@@ -15,9 +15,9 @@
 
 use super::Ray;
 use crate::camera::{Camera, Projection, ProjectionKind};
-use crate::math::{Vec2, Vec3};
+use crate::math::{Mat3, Vec2, Vec3};
 use crate::scalar::Scalar;
-use crate::solve::SolveError;
+use crate::solve::{self, SolveError};
 use core::fmt;
 
 /// Why a [`RayCamera`] could not be built.
@@ -131,11 +131,11 @@ impl<S: Scalar> RayCamera<S> {
         if focus.partial_cmp(&S::ZERO) != Some(core::cmp::Ordering::Greater) || !focus.is_finite() {
             return Err(RayCameraError::ZeroVector);
         }
-        let inv = camera
-            .world_to_view()
-            .matrix
-            .try_inverse()
-            .map_err(RayCameraError::Singular)?;
+        let inv = Mat3 {
+            m: solve::invert(&camera.world_to_view().matrix.m)
+                .map_err(RayCameraError::Singular)?
+                .x,
+        };
         let (u, v, w) = (inv.col(0), inv.col(1), inv.col(2));
         let viewer = camera.position();
         let mut cam = Self::new(viewer + w * focus, u, v, viewer, width, height)?;

@@ -39,65 +39,6 @@ pub struct MeshData<'a> {
     pub uvs: Option<&'a [[i16; 2]]>,
 }
 
-/// A power-of-two texture of [`Color`] texels, row-major without padding.
-#[derive(Clone, Copy, Debug)]
-pub struct TextureData<'a> {
-    texels: &'a [Color],
-    width: u16,
-    height: u16,
-}
-
-impl<'a> TextureData<'a> {
-    /// Wraps `texels` as a `width`×`height` texture.
-    ///
-    /// # Errors
-    /// [`SceneError::TextureNotPowerOfTwo`] unless both sides are powers
-    /// of two (the renderers tile with one AND per axis);
-    /// [`SceneError::TextureSize`] unless `texels.len() == width·height`.
-    pub const fn new(texels: &'a [Color], width: u16, height: u16) -> Result<Self, SceneError> {
-        if !(width.is_power_of_two() && height.is_power_of_two()) {
-            return Err(SceneError::TextureNotPowerOfTwo { width, height });
-        }
-        if texels.len() != width as usize * height as usize {
-            return Err(SceneError::TextureSize);
-        }
-        Ok(Self {
-            texels,
-            width,
-            height,
-        })
-    }
-
-    /// The texels.
-    #[must_use]
-    pub const fn texels(&self) -> &'a [Color] {
-        self.texels
-    }
-
-    /// Width in texels (a power of two).
-    #[must_use]
-    pub const fn width(&self) -> u16 {
-        self.width
-    }
-
-    /// Height in texels (a power of two).
-    #[must_use]
-    pub const fn height(&self) -> u16 {
-        self.height
-    }
-
-    /// The texel at integer texel coordinates, tiled.
-    #[must_use]
-    pub fn sample(&self, u: i32, v: i32) -> Color {
-        let x = (u & (self.width as i32 - 1)) as usize;
-        let y = (v & (self.height as i32 - 1)) as usize;
-        self.texels
-            .get(y * self.width as usize + x)
-            .copied()
-            .unwrap_or(Color::new(0, 0, 0))
-    }
-}
-
 /// How the raster path maps a texture.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(
@@ -110,15 +51,20 @@ pub enum TextureMode {
     Affine,
     /// Perspective-correct, one (reciprocal) division per pixel.
     Perspective,
-    /// Affine where a triangle's depth ratio `z_max/z_min` is at most
-    /// [`AUTO_AFFINE_MAX_DEPTH_RATIO`], perspective elsewhere.
+    /// Per triangle, by [`choose_mapping`](crate::texture::choose_mapping):
+    /// affine where the bound on affine mapping's error
+    /// ([`affine_error_bound`](crate::texture::affine_error_bound), from
+    /// the vertices' depths and texture coordinates) is at most
+    /// [`AUTO_AFFINE_MAX_ERROR`] texels, perspective elsewhere and for
+    /// every triangle that needs clipping.
     Auto,
 }
 
-/// The largest `z_max/z_min` of a triangle for which [`TextureMode::Auto`]
-/// maps affinely: the affine error at the middle of an edge is at most
-/// about `(r − 1)/(r + 1)/2` of the edge's texture extent, 2.4 % here.
-pub const AUTO_AFFINE_MAX_DEPTH_RATIO: f32 = 1.1;
+/// The largest affine error, in texels per axis, that
+/// [`TextureMode::Auto`] accepts before it maps a triangle perspectively:
+/// half a texel, so that with the rounding of both paths an affinely
+/// mapped pixel stays within one texel of the perspective-correct one.
+pub const AUTO_AFFINE_MAX_ERROR: f32 = 0.5;
 
 /// A surface's appearance.
 #[derive(Clone, Copy, Debug)]
@@ -129,8 +75,9 @@ pub enum Material<'a> {
     Gouraud(Color),
     /// An unlit texture.
     Texture {
-        /// The texels.
-        texture: TextureData<'a>,
+        /// The texels; both sides must be powers of two (the renderers
+        /// tile with [`RepeatPow2`](crate::texture::RepeatPow2)).
+        texture: crate::texture::Texture<'a, Color>,
         /// Affine, perspective or chosen per triangle.
         mode: TextureMode,
     },
@@ -485,7 +432,12 @@ impl Scene<'_> {
                 return Err(SceneError::AttributeCount { object: o });
             }
             if let Material::Texture { texture, .. } = obj.material {
-                TextureData::new(texture.texels, texture.width, texture.height)?;
+                if !texture.accepts::<crate::texture::RepeatPow2>() {
+                    return Err(SceneError::TextureNotPowerOfTwo {
+                        width: texture.width(),
+                        height: texture.height(),
+                    });
+                }
                 if m.uvs.is_none() {
                     return Err(SceneError::MissingUv { object: o });
                 }

@@ -77,8 +77,6 @@ pub enum SceneError {
         /// Height in texels.
         height: u16,
     },
-    /// A texture's texel count differs from width × height.
-    TextureSize,
     /// A textured mesh has no texture coordinates.
     MissingUv {
         /// Object index in the scene.
@@ -144,7 +142,6 @@ impl fmt::Display for SceneError {
                 f,
                 "texture is {width}x{height}: both sides must be powers of two"
             ),
-            Self::TextureSize => f.write_str("texture texel count differs from width x height"),
             Self::MissingUv { object } => {
                 write!(
                     f,

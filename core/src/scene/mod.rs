@@ -9,7 +9,7 @@
 //!
 //! | room | what it holds |
 //! |---|---|
-//! | `description.rs` | the description, borrowed and in `f32`: [`MeshData`], [`TextureData`], [`Material`], [`SceneObject`], [`SceneSphere`], [`Light`], [`CameraSpec`], [`ProjectionSpec`], [`Scene`]; checking it ([`Scene::validate`]) and its [`View`] for one image size |
+//! | `description.rs` | the description, borrowed and in `f32`: [`MeshData`], [`Material`], [`SceneObject`], [`SceneSphere`], [`Light`], [`CameraSpec`], [`ProjectionSpec`], [`Scene`]; checking it ([`Scene::validate`]) and its [`View`] for one image size |
 //! | `error.rs` | [`SceneError`], shared by every room |
 //! | `build.rs` | hand-made descriptions: [`Scene::new`] with defaults, [`quantize_positions`] and [`quantize_normals`] at compile time |
 //! | `prepared.rs` | the prepared scene, made once: [`PreparedMesh`] (positions and normals in the render scalar), [`PreparedObject`], [`Scene::prepare`] into caller storage |
@@ -69,7 +69,8 @@
 //!   texture coordinates with the hit's barycentric weights (for a planar
 //!   triangle, the texture-mapping vectors' value at the hit point), so it
 //!   is always perspective-correct; the raster path follows
-//!   [`TextureMode`]. Both fetch with [`TextureData::sample`].
+//!   [`TextureMode`]. Both fetch with the one sampler,
+//!   [`Texture::sample`](crate::texture::Texture::sample).
 //! - Spheres ([`SceneSphere`]) are drawn by the ray path only, lit per hit
 //!   with the sphere normal.
 //!
@@ -92,8 +93,8 @@ pub mod builtin;
 
 pub use build::{QuantizedPositions, quantize_normals, quantize_positions};
 pub use description::{
-    AUTO_AFFINE_MAX_DEPTH_RATIO, CameraSpec, Color, Light, MAX_RAY_OBJECTS, Material, MeshData,
-    ProjectionSpec, Scene, SceneObject, SceneSphere, TextureData, TextureMode, View, vec3,
+    AUTO_AFFINE_MAX_ERROR, CameraSpec, Color, Light, MAX_RAY_OBJECTS, Material, MeshData,
+    ProjectionSpec, Scene, SceneObject, SceneSphere, TextureMode, View, vec3,
 };
 pub use error::SceneError;
 pub use prepared::{MeshError, Normals, PreparedMesh, PreparedObject, Storage, storage_len};

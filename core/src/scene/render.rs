@@ -19,6 +19,8 @@ use super::prepared::{ObjectFrame, PreparedMesh, PreparedObject};
 use super::shade::Lighting;
 use super::{Color, Light, Material, Scene, SceneError, View};
 #[cfg(feature = "perspective")]
+use crate::math::Vec2;
+#[cfg(feature = "perspective")]
 use crate::pipeline::Attributes;
 #[cfg(feature = "gouraud")]
 use crate::pipeline::Intensity;
@@ -27,15 +29,19 @@ use crate::pipeline::Uv;
 #[cfg(feature = "perspective")]
 use crate::pipeline::UvPerspective;
 use crate::pipeline::{MeshVertex, OUTCODE_UNUSABLE, Pipeline, Varyings, Vertex};
+#[cfg(feature = "texture")]
+use crate::raster::AffineTexture;
 #[cfg(feature = "gouraud")]
 use crate::raster::Gouraud;
 #[cfg(feature = "perspective")]
 use crate::raster::PerspectiveTexture;
-#[cfg(feature = "texture")]
-use crate::raster::{AffineTexture, RepeatPow2, Texture};
 use crate::raster::{DepthTest, FillOutcome, Flat, ScreenVertex, Shade, SpanShader, fill_polygon};
 use crate::scalar::Scalar;
 use crate::target::{Rect, Target};
+#[cfg(feature = "texture")]
+use crate::texture::RepeatPow2;
+#[cfg(feature = "perspective")]
+use crate::texture::{Mapping, choose_mapping};
 
 /// Guard band of the clip volume, in pixels.
 const GUARD: i32 = 16;
@@ -480,12 +486,7 @@ impl<S: Scalar> Frame<'_, '_, S> {
                     }
                 }
                 #[cfg(feature = "texture")]
-                Material::Texture { texture, mode } => {
-                    let w = texture.width();
-                    let Ok(tex) = Texture::new(texture.texels(), w, texture.height(), w as usize)
-                    else {
-                        continue;
-                    };
+                Material::Texture { texture: tex, mode } => {
                     let Some(affine) = AffineTexture::<_, RepeatPow2>::new(tex) else {
                         continue;
                     };
@@ -521,9 +522,10 @@ impl<S: Scalar> Frame<'_, '_, S> {
                                 v: S::from_i32(v as i32),
                             }
                         };
+                        let threshold = S::from_f32(super::AUTO_AFFINE_MAX_ERROR);
                         for &tri in mesh.triangles() {
                             if mode == super::TextureMode::Auto
-                                && nearly_fronto_parallel(verts, tri)
+                                && auto_is_affine(verts, tri, uv, threshold)
                             {
                                 t.draw(target, depth, stats, tri, affine_in, affine_attr, |_| {
                                     affine
@@ -550,25 +552,40 @@ impl<S: Scalar> Frame<'_, '_, S> {
     }
 }
 
-/// [`TextureMode::Auto`](super::TextureMode::Auto)'s rule: affine when all
-/// three vertices are in the volume and their depth ratio
-/// `z_max/z_min = q_max/q_min` is at most
-/// [`AUTO_AFFINE_MAX_DEPTH_RATIO`](super::AUTO_AFFINE_MAX_DEPTH_RATIO)
-/// (1.1, exactly: `10·q_max ≤ 11·q_min`).
+/// [`TextureMode::Auto`](super::TextureMode::Auto)'s rule: affine when
+/// all three vertices are in the volume (a clipped triangle is always
+/// mapped perspectively) and [`choose_mapping`] finds the affine error
+/// bound within `threshold` texels.
+///
+/// The bound needs the depths only through `(z_max − z_min)/z_min`, and
+/// with `z = near/q` that equals `(q_max − q_min)/q_min` for the
+/// vertices' perspective varyings q (8.24). So the q are passed as the
+/// depths, shifted together so that the largest has 12 bits: the ratio
+/// keeps 2⁻¹¹ relative precision where it decides (q close together),
+/// and `4·z_min` stays inside I16F16.
 #[cfg(feature = "perspective")]
-fn nearly_fronto_parallel(verts: &[MeshVertex<1>], tri: [u16; 3]) -> bool {
-    let mut lo = i64::MAX;
-    let mut hi = 0i64;
-    for k in tri {
+fn auto_is_affine<S: Scalar>(
+    verts: &[MeshVertex<1>],
+    tri: [u16; 3],
+    uv: impl Fn(u16) -> [i16; 2],
+    threshold: S,
+) -> bool {
+    let mut q = [0i32; 3];
+    for (qk, &k) in q.iter_mut().zip(&tri) {
         let Some(v) = verts.get(k as usize) else {
             return false;
         };
         if v.outcode != 0 {
             return false;
         }
-        let q = v.screen.v[0] as i64;
-        lo = lo.min(q);
-        hi = hi.max(q);
+        *qk = v.screen.v[0];
     }
-    10 * hi <= 11 * lo
+    let hi = q[0].max(q[1]).max(q[2]);
+    let shift = (32 - hi.max(1).leading_zeros()).saturating_sub(12);
+    let z = q.map(|qk| S::from_i32(qk >> shift));
+    let t = tri.map(|k| {
+        let [u, v] = uv(k);
+        Vec2::new(S::from_i32(u as i32), S::from_i32(v as i32))
+    });
+    choose_mapping(z, t, threshold) == Mapping::Affine
 }

@@ -5,6 +5,7 @@ use crate::raster::{DepthBuffer, Shade};
 use crate::scalar::{I16F16, Scalar};
 use crate::target::Framebuffer;
 use crate::transform::Pose;
+use crate::texture::{Texture, TextureError};
 use embedded_graphics::pixelcolor::IntoStorage;
 use std::vec;
 
@@ -122,25 +123,36 @@ fn validate_reports_bad_meshes_and_textures() {
     );
     let texels = [Color::new(0, 0, 0); 12];
     assert_eq!(
-        TextureData::new(&texels, 4, 3).err(),
-        Some(SceneError::TextureNotPowerOfTwo {
+        Texture::new(&texels, 4, 4, 4).err(),
+        Some(TextureError::TooShort {
+            needed: 16,
+            len: 12
+        })
+    );
+    let textured = |texture| {
+        [SceneObject {
+            mesh: &CUBE_MESH,
+            pose: Pose::default(),
+            material: Material::Texture {
+                texture,
+                mode: TextureMode::Auto,
+            },
+        }]
+    };
+    // A 4×3 texture is a valid store, but the scene tiles by powers of two.
+    let objects = textured(Texture::new(&texels, 4, 3, 4).unwrap());
+    let scene = Scene {
+        objects: &objects,
+        ..CUBE
+    };
+    assert_eq!(
+        scene.validate(),
+        Err(SceneError::TextureNotPowerOfTwo {
             width: 4,
             height: 3
         })
     );
-    assert_eq!(
-        TextureData::new(&texels, 4, 4).err(),
-        Some(SceneError::TextureSize)
-    );
-    let tex = TextureData::new(&texels[..8], 4, 2).unwrap();
-    let objects = [SceneObject {
-        mesh: &CUBE_MESH,
-        pose: Pose::default(),
-        material: Material::Texture {
-            texture: tex,
-            mode: TextureMode::Auto,
-        },
-    }];
+    let objects = textured(Texture::new(&texels[..8], 4, 2, 4).unwrap());
     let scene = Scene {
         objects: &objects,
         ..CUBE
@@ -359,4 +371,88 @@ fn renderer_with_a_direct_camera_equals_the_scene_camera() {
         Renderer::<f32>::new(&bad, 8, 8),
         Err(SceneError::NonFinite { what: "camera" })
     ));
+/// `TextureMode::Auto` draws each triangle exactly as `Affine` or as
+/// `Perspective` does, as `choose_mapping`'s bound decides: affine iff
+/// `Δuv·(z_max − z_min)/(4·z_min) ≤ AUTO_AFFINE_MAX_ERROR`, the oracle
+/// computed here in f64 from the quantised positions (view z = −world z
+/// for the camera at the origin with zero angles). Triangles within 2 %
+/// of the threshold are skipped (the rule sees the depths as 8.24
+/// perspective varyings shifted to 12 bits). Cases where the old
+/// depth-ratio rule (`z_max/z_min ≤ 1.1`) decided otherwise are included,
+/// and only cases where Affine and Perspective draw different images
+/// count as evidence.
+#[test]
+fn auto_mapping_follows_the_affine_error_bound() {
+    const SIDE: usize = 32;
+    let texels: [Color; SIDE * SIDE] = core::array::from_fn(|k| {
+        let (x, y) = ((k % SIDE) as u8, (k / SIDE) as u8);
+        Color::new(x, y * 2, (x ^ y) & 31)
+    });
+    let tex = Texture::new(&texels, SIDE as u16, SIDE as u16, SIDE).unwrap();
+    let threshold = f64::from(AUTO_AFFINE_MAX_ERROR);
+    // (z of A and C, z of B in 1/256 units, texel extent D).
+    let cases: [(i16, i16, i16); 10] = [
+        (512, 512, 64), // parallel to the screen: bound 0
+        (512, 538, 16), // bound 0.20
+        (512, 560, 16), // 0.375
+        (512, 563, 16), // 0.40, the old rule's limit ratio
+        (512, 576, 16), // 0.5 + 0: skipped (at the threshold)
+        (512, 590, 16), // 0.61
+        (512, 538, 64), // 0.81: old rule affine (ratio 1.05), new perspective
+        (512, 640, 4),  // 0.25: old rule perspective (ratio 1.25), new affine
+        (512, 614, 8),  // 0.40: old rule perspective (ratio 1.2), new affine
+        (512, 768, 16), // 2.0
+    ];
+    let mut evidence = [0; 2];
+    for (za, zb, d) in cases {
+        let positions = [[-128, -128, -za], [128, -128, -zb], [-128, 128, -za]];
+        let uvs = [[0, 0], [d, 0], [0, d]];
+        let mesh = MeshData {
+            closed: false,
+            positions: &positions,
+            scale: 1.0 / 256.0,
+            triangles: &[[0, 1, 2]],
+            normals: None,
+            uvs: Some(&uvs),
+        };
+        let image = |mode| {
+            let objects = [SceneObject {
+                mesh: &mesh,
+                pose: Pose::default(),
+                material: Material::Texture { texture: tex, mode },
+            }];
+            let scene = Scene {
+                camera: CameraSpec::Angles {
+                    position: [0.0; 3],
+                    angles: [0.0; 3],
+                },
+                projection: ProjectionSpec::Perspective { fov_x: 1.0 },
+                objects: &objects,
+                spheres: &[],
+                ..CUBE
+            };
+            raster_image::<I16F16>(&scene, 128, 128)
+        };
+        let (z0, z1) = (f64::from(za), f64::from(zb));
+        let bound = f64::from(d) * (z1 - z0) / (4.0 * z0);
+        if (bound - threshold).abs() < 0.02 * threshold {
+            continue;
+        }
+        let affine = bound <= threshold;
+        let auto = image(TextureMode::Auto);
+        let (a, p) = (image(TextureMode::Affine), image(TextureMode::Perspective));
+        let want = if affine { &a } else { &p };
+        assert!(
+            auto == *want,
+            "({za}, {zb}, {d}): bound {bound:.3}, Auto should be {}",
+            if affine { "affine" } else { "perspective" }
+        );
+        if a != p {
+            evidence[usize::from(affine)] += 1;
+        }
+    }
+    assert!(
+        evidence[0] >= 3 && evidence[1] >= 2,
+        "too few cases where affine and perspective differ: {evidence:?}"
+    );
 }

@@ -730,4 +730,24 @@ fn refinement_that_cannot_converge_is_reported() {
         }
         Err(e) => panic!("{e}"),
     }
+/// `invert` is the solver on `A X = I`; a singular 4×4 (last row = w = z)
+/// is reported with its column, and `invert_affine` round-trips.
+#[test]
+fn invert_reports_singular_and_round_trips() {
+    let mut m = [[0.0f64; 4]; 4];
+    for (i, r) in m.iter_mut().enumerate().take(3) {
+        r[i] = 1.0;
+    }
+    m[3] = [0.0, 0.0, 1.0, 0.0];
+    assert_eq!(invert(&m).unwrap_err(), SolveError::Singular { column: 3 });
+    let a = crate::math::Affine3::new(
+        crate::math::Mat3::from_diagonal(crate::math::Vec3::new(2.0f64, 4.0, -0.5)),
+        crate::math::Vec3::new(1.0, 2.0, 3.0),
+    );
+    let inv = invert_affine(&a).unwrap();
+    let p = crate::math::Vec3::new(0.25, -8.0, 3.5);
+    assert_eq!(inv.transform_point3(a.transform_point3(p)), p);
+    let mut bad = a;
+    bad.matrix.m[1] = [0.0; 3];
+    assert!(invert_affine(&bad).is_err());
 }

@@ -24,9 +24,6 @@ pub enum BufferError {
     /// `stride·(height−1) + width` does not fit in `usize`, or the frame
     /// rows `y0..y0+height` do not fit in `i32`.
     Overflow,
-    /// A texture needs at least one texel (or, for a power-of-two wrap,
-    /// power-of-two sides).
-    BadTextureSize,
 }
 
 impl fmt::Display for BufferError {
@@ -37,7 +34,6 @@ impl fmt::Display for BufferError {
                 write!(f, "buffer holds {len} elements, shape needs {needed}")
             }
             Self::Overflow => f.write_str("buffer shape overflows"),
-            Self::BadTextureSize => f.write_str("texture size is zero or not a power of two"),
         }
     }
 }

@@ -1,8 +1,10 @@
 use super::*;
 use crate::camera::Projection;
+use crate::math::{Vec2, Vec3};
 use crate::pipeline::{Pipeline, Uv, UvPerspective, Vertex};
-use crate::raster::{AffineTexture, Clamp, NoDepth, PerspectiveTexture, Texture};
-use crate::scalar::I16F16;
+use crate::raster::{AffineTexture, NoDepth, PerspectiveTexture};
+use crate::scalar::{I16F16, Scalar};
+use crate::solve::SolveError;
 use crate::target::Framebuffer;
 use crate::test_util::Rng;
 use std::vec;

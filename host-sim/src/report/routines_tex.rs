@@ -6,10 +6,11 @@ use super::{Pending, Rng, Row, Size, Table, bench, finish};
 use sightline::camera::Projection;
 use sightline::math::{Vec2, Vec3};
 use sightline::pipeline::{Pipeline, Uv, UvPerspective, Vertex};
-use sightline::raster::{AffineTexture, NoDepth, PerspectiveTexture, RepeatPow2, Texture};
+use sightline::raster::{AffineTexture, NoDepth, PerspectiveTexture};
 use sightline::scalar::{I16F16, Scalar};
 use sightline::target::Framebuffer;
 use sightline::texture::{Mapping, TextureVectors, choose_mapping};
+use sightline::texture::{RepeatPow2, Texture};
 
 const FOCUS: f64 = 120.0;
 const W: u16 = 240;

@@ -15,8 +15,9 @@ use sightline::camera::CameraError;
 use sightline::math::Vec3;
 use sightline::scene::{
     self, CameraSpec, Color, Material, MeshData, ProjectionSpec, Scene, SceneObject, SceneSphere,
-    TextureData, TextureMode,
+    TextureMode,
 };
+use sightline::texture::Texture;
 use sightline::transform::{Euler, Pose};
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -369,7 +370,7 @@ impl LoadedScene {
                     (MaterialDef::Flat(c), _) => Material::Flat(color(*c)),
                     (MaterialDef::Gouraud(c), _) => Material::Gouraud(color(*c)),
                     (MaterialDef::Texture { .. }, Some((texels, w, h, mode))) => {
-                        match TextureData::new(texels, *w, *h) {
+                        match Texture::new(texels, *w, *h, *w as usize) {
                             Ok(texture) => Material::Texture {
                                 texture,
                                 mode: *mode,

@@ -24,8 +24,8 @@ use sightline::pipeline::{
     Intensity, MeshVertex, Pipeline, ScreenPolygon, Uv, UvPerspective, Varyings, Vertex,
 };
 use sightline::raster::{
-    AffineTexture, DepthBuffer, Flat, Gouraud, NoDepth, PerspectiveTexture, RepeatPow2,
-    ScreenVertex, Shade, Texture, fill_polygon,
+    AffineTexture, DepthBuffer, Flat, Gouraud, NoDepth, PerspectiveTexture, ScreenVertex, Shade,
+    fill_polygon,
 };
 use sightline::scalar::{I16F16, Scalar};
 use sightline::scene::builtin::{self, BUNNY_NORMALS, BUNNY_POSITIONS, BUNNY_TRIANGLES};
@@ -34,6 +34,7 @@ use sightline::scene::{
     Storage, View,
 };
 use sightline::target::{Band, Framebuffer};
+use sightline::texture::{RepeatPow2, Texture};
 use sightline::transform::{Euler, Pose};
 
 /// Frame width in pixels.

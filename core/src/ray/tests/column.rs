@@ -5,7 +5,6 @@
 
 use super::{Rng, per_scalar};
 use crate::math::Vec2;
-use crate::raster::Texture;
 use crate::ray::column::{
     Column, ColumnCamera, ColumnError, ColumnStyle, GridMap, Side, cast_columns, draw_columns,
     render_columns,
@@ -13,6 +12,7 @@ use crate::ray::column::{
 use crate::scalar::Scalar;
 use crate::scene::builtin::COLUMN_MAP;
 use crate::target::{Band, Framebuffer, Rect, Target};
+use crate::texture::Texture;
 
 extern crate std;
 use std::string::String;

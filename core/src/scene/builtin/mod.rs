@@ -23,9 +23,10 @@ pub use bunny_data::{BUNNY_NORMALS, BUNNY_POSITIONS, BUNNY_SCALE, BUNNY_TRIANGLE
 
 use super::{
     CameraSpec, Color, Light, Material, MeshData, ProjectionSpec, Scene, SceneObject, SceneSphere,
-    TextureData, TextureMode,
+    TextureMode,
 };
 use crate::math::Vec3;
+use crate::texture::Texture;
 use crate::transform::{Euler, Pose};
 
 /// Every built-in scene, in listing order.
@@ -230,11 +231,15 @@ const fn checker() -> [Color; 64 * 64] {
 pub static CHECKER_TEXELS: [Color; 64 * 64] = checker();
 
 /// [`CHECKER_TEXELS`] as a texture.
-pub static CHECKER: TextureData<'static> =
-    match TextureData::new(&CHECKER_TEXELS, CHECKER_SIDE, CHECKER_SIDE) {
-        Ok(t) => t,
-        Err(_) => panic!("the checker is 64x64"),
-    };
+pub static CHECKER: Texture<'static, Color> = match Texture::new(
+    &CHECKER_TEXELS,
+    CHECKER_SIDE,
+    CHECKER_SIDE,
+    CHECKER_SIDE as usize,
+) {
+    Ok(t) => t,
+    Err(_) => panic!("the checker is 64x64"),
+};
 
 /// Floor (x ∈ [−2, 2], y = 0), left wall (x = −2) and right wall (x = 2),
 /// from z = 0 to z = −24, 3 units high; 1/256 unit per step.

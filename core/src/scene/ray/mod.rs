@@ -42,6 +42,7 @@ use crate::ray::Sphere;
 use crate::ray::{Aabb, Ray, RayCamera, ShearedRay, Triangle, TriangleHit};
 use crate::scalar::Scalar;
 use crate::target::Target;
+use crate::texture::RepeatPow2;
 
 #[derive(Clone, Copy, Debug)]
 struct RayObject<S> {
@@ -154,9 +155,7 @@ impl<'a, S: Scalar> RayScene<'a, S> {
         let mut objects = heapless::Vec::new();
         for (o, obj) in scene.objects.iter().enumerate() {
             let pose = shade::pose::<S>(&obj.pose);
-            let to_object = pose
-                .object_to_world()
-                .try_inverse()
+            let to_object = crate::solve::invert_affine(&pose.object_to_world())
                 .map_err(|_| SceneError::BadPose { object: o })?;
             let scale = S::from_f32(obj.mesh.scale);
             let bounds = bounds(obj.mesh.positions, scale);
@@ -286,7 +285,7 @@ impl<'a, S: Scalar> RayScene<'a, S> {
             },
             RaySample::Texel { object, u, v } => match self.scene.objects.get(object) {
                 Some(o) => match o.material {
-                    Material::Texture { texture, .. } => texture.sample(u, v),
+                    Material::Texture { texture, .. } => texture.sample::<RepeatPow2>(u, v),
                     _ => bg,
                 },
                 None => bg,

@@ -178,5 +178,4 @@ pub mod transform;
 
 // Shared by the test modules; a build with fewer stages runs fewer of them.
 #[cfg(test)]
-#[allow(dead_code)]
 mod test_util;

@@ -427,11 +427,6 @@ where
     }
 }
 
-#[cfg(all(
-    test,
-    feature = "gouraud",
-    feature = "texture",
-    feature = "perspective",
-    feature = "depth"
-))]
+// Each test is gated on the stages it needs.
+#[cfg(test)]
 mod tests;

@@ -121,5 +121,5 @@ impl<T: Target + ?Sized> Target for &mut T {
     }
 }
 
-#[cfg(all(test, feature = "gouraud"))]
+#[cfg(test)]
 mod tests;

@@ -192,5 +192,4 @@ mod layer_tests;
 
 // Shared by the test modules; a build with fewer stages runs fewer of them.
 #[cfg(test)]
-#[allow(dead_code)]
 mod test_util;

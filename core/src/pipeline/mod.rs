@@ -427,12 +427,6 @@ impl<S: Scalar> Pipeline<S> {
     }
 }
 
-#[cfg(all(
-    test,
-    feature = "gouraud",
-    feature = "texture",
-    feature = "perspective",
-    feature = "depth",
-    feature = "clip-far"
-))]
+// Each test is gated on the stages it needs.
+#[cfg(test)]
 mod tests;

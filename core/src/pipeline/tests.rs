@@ -1,6 +1,10 @@
 use super::*;
 use crate::camera::Projection;
-use crate::raster::{DepthBuffer, FillOutcome, Flat, Gouraud, NoDepth};
+#[cfg(feature = "depth")]
+use crate::raster::DepthBuffer;
+#[cfg(feature = "gouraud")]
+use crate::raster::Gouraud;
+use crate::raster::{FillOutcome, Flat, NoDepth};
 use crate::scalar::{I16F16, Scalar};
 use crate::test_util::MockTarget;
 use proptest::prelude::*;
@@ -31,6 +35,7 @@ fn near_only<S: Scalar>(near: f64) -> Frustum<S> {
     Frustum::from_planes(&[Plane::new(v3(0.0, 0.0, 1.0), S::from_f64(-near))])
 }
 
+#[cfg(feature = "gouraud")]
 fn digits() -> [char; 256] {
     core::array::from_fn(|i| char::from(b'0' + (i * 10 / 256) as u8))
 }
@@ -135,6 +140,7 @@ fn shared_edges_clip_identically<S: Scalar>() {
         .unwrap();
 }
 
+#[cfg(feature = "gouraud")]
 fn square_pattern<S: Scalar>() {
     // x, y ∈ [−1, 1] at z = 2 projects to x_s ∈ [2, 10], y_s ∈ [0, 8].
     let p = pipe::<S>();
@@ -187,6 +193,7 @@ fn near_clipped_floor_pattern<S: Scalar>() {
     ]);
 }
 
+#[cfg(feature = "depth")]
 fn depth_through_pipeline<S: Scalar>() {
     // A near square (z = 2) and a larger far one (z = 4) overlapping it:
     // drawn far first or near first, the near one wins where they overlap.
@@ -228,6 +235,7 @@ fn depth_through_pipeline<S: Scalar>() {
     }
 }
 
+#[cfg(all(feature = "gouraud", feature = "depth"))]
 fn bad_input<S: Scalar>() {
     let p = pipe::<S>();
     let mut t = MockTarget::new(12, 8);
@@ -324,6 +332,7 @@ fn parallel_projection_square<S: Scalar>() {
 /// three vertices are usually non-convex, and may then exceed the
 /// capacity derived for convex input: that must be reported as
 /// `TooManyVertices`, never truncated; a triangle always fits.
+#[cfg(feature = "gouraud")]
 fn clip_stays_in_volume<S: Scalar>(pts: &[(f64, f64, f64, f64)]) {
     let p = pipe::<S>();
     let tri: Vec<VertexXyzI<S>> = pts.iter().map(|&(x, y, z, i)| vi(x, y, z, i)).collect();
@@ -355,6 +364,7 @@ fn clip_stays_in_volume<S: Scalar>(pts: &[(f64, f64, f64, f64)]) {
 /// A small scene (two interpenetrating Gouraud quads, one crossing the
 /// near plane) rendered to a 24×20 frame in one go and in bands of
 /// `rows`: the results must be bit-identical.
+#[cfg(all(feature = "gouraud", feature = "depth"))]
 fn bands_match_full_frame<S: Scalar>() {
     use crate::target::{Band, Framebuffer};
     let p = Pipeline::new(
@@ -435,6 +445,7 @@ fn bands_match_full_frame<S: Scalar>() {
 /// A floor `y = 1`, `x ∈ [−2, 2]`, `z ∈ [¼, 8]` (crossing the near plane
 /// at ½) textured with u = 2x + 4, v = 2z, through a 32×24 perspective
 /// pipeline (focus 12). `make` builds the vertex attributes from (u, v).
+#[cfg(feature = "perspective")]
 fn render_floor<S: Scalar, A, Sh, const K: usize>(
     sh: &Sh,
     make: impl Fn(S, S) -> A,
@@ -471,6 +482,7 @@ where
 /// Pixels whose texel differs from the exact one found by casting a ray
 /// in f64 through the pixel centre, ignoring pixels within `margin`
 /// texels of a texel boundary: (mismatches, drawn).
+#[cfg(feature = "perspective")]
 fn floor_mismatches(buf: &[u16; 32 * 24], margin: f64) -> (usize, usize) {
     let (cx, cy, f) = (16.0, 12.0, 12.0);
     let (mut bad, mut drawn) = (0, 0);
@@ -499,6 +511,7 @@ fn floor_mismatches(buf: &[u16; 32 * 24], margin: f64) -> (usize, usize) {
     (bad, drawn)
 }
 
+#[cfg(feature = "perspective")]
 fn perspective_texture_matches_ray_cast<S: Scalar>() {
     use crate::raster::{AffineTexture, PerspectiveTexture};
     use crate::texture::{RepeatPow2, Texture};
@@ -605,6 +618,7 @@ fn clipped_mesh_has_no_overdraw<S: Scalar>(
     true
 }
 
+#[cfg(feature = "gouraud")]
 fn slivers_clip_inside<S: Scalar>() {
     // Needle-thin triangles crossing the near plane and a side plane, one
     // with two vertices a grid step apart: clipping keeps them inside the
@@ -783,6 +797,7 @@ macro_rules! pipeline_tests {
             fn shared_edges_clip_identically() {
                 super::shared_edges_clip_identically::<$S>();
             }
+            #[cfg(feature = "gouraud")]
             #[test]
             fn square_pattern() {
                 super::square_pattern::<$S>();
@@ -791,18 +806,22 @@ macro_rules! pipeline_tests {
             fn near_clipped_floor_pattern() {
                 super::near_clipped_floor_pattern::<$S>();
             }
+            #[cfg(feature = "depth")]
             #[test]
             fn depth_through_pipeline() {
                 super::depth_through_pipeline::<$S>();
             }
+            #[cfg(all(feature = "gouraud", feature = "depth"))]
             #[test]
             fn bands_match_full_frame() {
                 super::bands_match_full_frame::<$S>();
             }
+            #[cfg(feature = "perspective")]
             #[test]
             fn perspective_texture_matches_ray_cast() {
                 super::perspective_texture_matches_ray_cast::<$S>();
             }
+            #[cfg(feature = "gouraud")]
             #[test]
             fn slivers_clip_inside() {
                 super::slivers_clip_inside::<$S>();
@@ -811,6 +830,7 @@ macro_rules! pipeline_tests {
             fn culling() {
                 super::culling::<$S>();
             }
+            #[cfg(all(feature = "gouraud", feature = "depth"))]
             #[test]
             fn bad_input() {
                 super::bad_input::<$S>();
@@ -838,6 +858,7 @@ macro_rules! pipeline_tests {
                     super::mesh_matches_project_polygon::<$S>(&pts, &tris);
                 }
 
+                #[cfg(feature = "gouraud")]
                 #[test]
                 fn clip_stays_in_volume(
                     pts in proptest::collection::vec(

@@ -158,35 +158,29 @@ impl<S: Scalar> Varyings<S, 1> for Intensity<S> {
     }
 }
 
-impl<S: Scalar> Attributes<S> for Uv<S> {
-    #[inline]
-    fn lerp(self, other: Self, t: S) -> Self {
-        Self {
-            u: lerp(self.u, other.u, t),
-            v: lerp(self.v, other.v, t),
+/// Formats whose fields are all interpolated scalars: each field lerps and
+/// is checked on its own. (`Uv` and `UvPerspective` interpolate alike and
+/// differ only in their varyings.)
+macro_rules! field_attributes {
+    ($($T:ident { $($f:ident),+ }),+ $(,)?) => {$(
+        impl<S: Scalar> Attributes<S> for $T<S> {
+            #[inline]
+            fn lerp(self, other: Self, t: S) -> Self {
+                Self {
+                    $($f: lerp(self.$f, other.$f, t)),+
+                }
+            }
+            fn is_finite(&self) -> bool {
+                $(self.$f.is_finite())&&+
+            }
         }
-    }
-    fn is_finite(&self) -> bool {
-        self.u.is_finite() && self.v.is_finite()
-    }
+    )+};
 }
+field_attributes!(Uv { u, v }, UvPerspective { u, v }, IntensityUv { i, u, v });
 
 impl<S: Scalar> Varyings<S, 2> for Uv<S> {
     fn to_varyings(&self, _q: S) -> [i32; 2] {
         [texel_varying(self.u), texel_varying(self.v)]
-    }
-}
-
-impl<S: Scalar> Attributes<S> for UvPerspective<S> {
-    #[inline]
-    fn lerp(self, other: Self, t: S) -> Self {
-        Self {
-            u: lerp(self.u, other.u, t),
-            v: lerp(self.v, other.v, t),
-        }
-    }
-    fn is_finite(&self) -> bool {
-        self.u.is_finite() && self.v.is_finite()
     }
 }
 
@@ -198,20 +192,6 @@ impl<S: Scalar> Varyings<S, 3> for UvPerspective<S> {
             .unwrap_or(1)
             .max(1);
         [texel_varying(self.u * q), texel_varying(self.v * q), qv]
-    }
-}
-
-impl<S: Scalar> Attributes<S> for IntensityUv<S> {
-    #[inline]
-    fn lerp(self, other: Self, t: S) -> Self {
-        Self {
-            i: lerp(self.i, other.i, t),
-            u: lerp(self.u, other.u, t),
-            v: lerp(self.v, other.v, t),
-        }
-    }
-    fn is_finite(&self) -> bool {
-        self.i.is_finite() && self.u.is_finite() && self.v.is_finite()
     }
 }
 

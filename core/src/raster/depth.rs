@@ -7,7 +7,7 @@
 
 use crate::target::Rect;
 #[cfg(feature = "depth")]
-use crate::target::{BufferError, layout::Layout};
+use crate::target::{Band, BufferError};
 
 /// Depth keys: 0 is nearest, 65535 farthest. The pipeline maps the near
 /// plane to 0 and the far plane to 65535 (see
@@ -137,8 +137,9 @@ mod private {
 #[cfg(feature = "depth")]
 #[derive(Debug)]
 pub struct DepthBuffer<'a, K: StoredDepth = DepthKey> {
-    buf: &'a mut [K],
-    layout: Layout,
+    // A band of keys: one shape check and one clipping rule for colour
+    // and depth.
+    keys: Band<'a, K>,
 }
 
 #[cfg(feature = "depth")]
@@ -155,19 +156,18 @@ impl<'a, K: StoredDepth> DepthBuffer<'a, K> {
         stride: usize,
         y0: i32,
     ) -> Result<Self, BufferError> {
-        let layout = Layout::new(buf.len(), width, rows, stride, y0)?;
-        Ok(Self { buf, layout })
+        Band::new(buf, width, rows, stride, y0).map(|keys| Self { keys })
     }
 
     /// Sets every key to the farthest value ([`StoredDepth::FAR`]: 65535
     /// for `u16`).
     pub fn clear(&mut self) {
-        for row in 0..self.layout.height as i32 {
-            if let Some((_, r)) =
-                self.layout
-                    .span(self.layout.y0 + row, 0, self.layout.width as u32)
-            {
-                if let Some(s) = self.buf.get_mut(r) {
+        // `slice::fill` rather than the band's unrolled colour fill: an
+        // all-ones key fill becomes `memset`.
+        let l = self.keys.layout;
+        for row in 0..l.height as i32 {
+            if let Some((_, r)) = l.span(l.y0 + row, 0, l.width as u32) {
+                if let Some(s) = self.keys.buf.get_mut(r) {
                     s.fill(K::FAR);
                 }
             }
@@ -179,17 +179,13 @@ impl<'a, K: StoredDepth> DepthBuffer<'a, K> {
     /// # Errors
     /// [`BufferError::Overflow`] if `y0 + rows` overflows `i32`.
     pub fn move_to(&mut self, y0: i32) -> Result<(), BufferError> {
-        let l = self.layout;
-        self.layout = Layout::new(self.buf.len(), l.width, l.height, l.stride, y0)?;
-        Ok(())
+        self.keys.move_to(y0)
     }
 
     /// The key at frame position (x, y), or `None` outside.
     #[must_use]
     pub fn key(&self, x: i32, y: i32) -> Option<K> {
-        self.layout
-            .index(x, y)
-            .and_then(|i| self.buf.get(i).copied())
+        self.keys.pixel(x, y)
     }
 }
 
@@ -198,7 +194,7 @@ impl<K: StoredDepth> DepthTest for DepthBuffer<'_, K> {
     const ENABLED: bool = true;
 
     fn clip_rect(&self) -> Option<Rect> {
-        Some(self.layout.rect())
+        Some(self.keys.layout.rect())
     }
 
     #[inline]
@@ -211,10 +207,10 @@ impl<K: StoredDepth> DepthTest for DepthBuffer<'_, K> {
         dz: i32,
         mut pass: F,
     ) {
-        let Some((skip, r)) = self.layout.span(y, x, len) else {
+        let Some((skip, r)) = self.keys.layout.span(y, x, len) else {
             return;
         };
-        let Some(row) = self.buf.get_mut(r) else {
+        let Some(row) = self.keys.buf.get_mut(r) else {
             return;
         };
         let mut z = z.wrapping_add(dz.wrapping_mul(skip as i32));
@@ -266,10 +262,11 @@ impl<K: StoredDepth> DepthBuffer<'_, K> {
         mut color: F,
     ) {
         let len = u32::try_from(pixels.len()).unwrap_or(u32::MAX);
-        if let Some(keys) = self
+        let band = &mut self.keys;
+        if let Some(keys) = band
             .layout
             .span_exact(y, x, len)
-            .and_then(|r| self.buf.get_mut(r))
+            .and_then(|r| band.buf.get_mut(r))
         {
             // The whole span is inside (the scan converter's case).
             let mut z = z;
@@ -283,10 +280,10 @@ impl<K: StoredDepth> DepthBuffer<'_, K> {
             }
             return;
         }
-        let Some((skip, r)) = self.layout.span(y, x, len) else {
+        let Some((skip, r)) = band.layout.span(y, x, len) else {
             return;
         };
-        let (Some(keys), Some(pixels)) = (self.buf.get_mut(r), pixels.get_mut(skip as usize..))
+        let (Some(keys), Some(pixels)) = (band.buf.get_mut(r), pixels.get_mut(skip as usize..))
         else {
             return;
         };

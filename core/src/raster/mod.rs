@@ -319,24 +319,30 @@ where
                 } else {
                     (0, 0)
                 };
+                // The varyings at the span's first pixel and their steps:
+                // one set-up for the fused write and the runs.
+                let mut start = [0i32; K];
+                let mut step = [0i32; K];
+                if solid.is_none() {
+                    for k in 0..K {
+                        (start[k], step[k]) = vgrad[k].span(x, y, len, lo, hi);
+                    }
+                }
+                // The varyings `i` pixels into the span.
+                let at = |i: u32| {
+                    let mut v = start;
+                    for k in 0..K {
+                        v[k] = v[k].wrapping_add(step[k].wrapping_mul(i as i32));
+                    }
+                    v
+                };
                 if Z::ENABLED && Sh::PER_PIXEL {
                     if let Some(pixels) = target.span_mut(y, x, len) {
                         // Depth test and write fused in one loop.
                         if let Some(c) = solid {
                             depth.test_write(y, x, z, dz, pixels, |_| c);
                         } else {
-                            let mut start = [0i32; K];
-                            let mut step = [0i32; K];
-                            for k in 0..K {
-                                (start[k], step[k]) = vgrad[k].span(x, y, len, lo, hi);
-                            }
-                            depth.test_write(y, x, z, dz, pixels, |i| {
-                                let mut v = start;
-                                for k in 0..K {
-                                    v[k] = v[k].wrapping_add(step[k].wrapping_mul(i as i32));
-                                }
-                                shader.color(&v)
-                            });
+                            depth.test_write(y, x, z, dz, pixels, |i| shader.color(&at(i)));
                         }
                         break 'span true;
                     }
@@ -346,17 +352,8 @@ where
                         target.fill_solid(y, x + off as i32, run, c);
                     });
                 } else {
-                    let mut start = [0i32; K];
-                    let mut step = [0i32; K];
-                    for k in 0..K {
-                        (start[k], step[k]) = vgrad[k].span(x, y, len, lo, hi);
-                    }
                     depth.test_span(y, x, len, z, dz, |off, run| {
-                        let mut v = start;
-                        for k in 0..K {
-                            v[k] = v[k].wrapping_add(step[k].wrapping_mul(off as i32));
-                        }
-                        shader.shade_run(target, y, x + off as i32, run, v, step);
+                        shader.shade_run(target, y, x + off as i32, run, at(off), step);
                     });
                 }
                 true
@@ -430,11 +427,6 @@ where
     }
 }
 
-#[cfg(all(
-    test,
-    feature = "gouraud",
-    feature = "texture",
-    feature = "perspective",
-    feature = "depth"
-))]
+// Each test is gated on the stages it needs.
+#[cfg(test)]
 mod tests;

@@ -1,7 +1,15 @@
 use super::*;
-use crate::target::{Band, Framebuffer};
-use crate::test_util::{MockTarget, oracle_covers, sp, sv};
-use crate::texture::{Clamp, Repeat, RepeatPow2, Texture};
+#[cfg(all(feature = "gouraud", feature = "depth"))]
+use crate::target::Band;
+#[cfg(any(feature = "depth", feature = "texture"))]
+use crate::target::Framebuffer;
+#[cfg(any(feature = "gouraud", feature = "depth", feature = "texture"))]
+use crate::test_util::sp;
+use crate::test_util::{MockTarget, oracle_covers, sv};
+#[cfg(feature = "perspective")]
+use crate::texture::Repeat;
+#[cfg(feature = "texture")]
+use crate::texture::{Clamp, RepeatPow2, Texture};
 use proptest::prelude::*;
 use std::vec;
 use std::vec::Vec;
@@ -90,6 +98,7 @@ fn pentagon_and_clip_to_target() {
     ]);
 }
 
+#[cfg(feature = "gouraud")]
 #[test]
 fn gouraud_pattern() {
     // Intensity 0 on the left edge, 255 on the right, ramp to digits 0..9.
@@ -113,6 +122,7 @@ fn gouraud_pattern() {
     ]);
 }
 
+#[cfg(feature = "gouraud")]
 #[test]
 fn gouraud_values_never_leave_the_ramp() {
     // Out-of-range varyings (intensity beyond 255 and below 0) are clamped
@@ -137,6 +147,7 @@ fn gouraud_values_never_leave_the_ramp() {
     assert_eq!(t.px[3], 'H');
 }
 
+#[cfg(feature = "depth")]
 #[test]
 fn depth_test_is_order_independent() {
     let q = |x0: f64, y0: f64, x1: f64, y1: f64, z: u16| {
@@ -177,6 +188,7 @@ fn depth_test_is_order_independent() {
     }
 }
 
+#[cfg(feature = "depth")]
 #[test]
 fn depth_interpolates_across_a_tilted_polygon() {
     // z from 0 at x = 0 to 65535 at x = 16 along the span; a flat polygon
@@ -232,6 +244,7 @@ fn degenerate_and_extreme_input() {
     assert!(t.px.iter().all(|&c| c == '#'));
 }
 
+#[cfg(feature = "gouraud")]
 #[test]
 fn sliver_with_extreme_varyings_stays_in_range() {
     // A near-degenerate, very long sliver: gradients are huge and the
@@ -275,6 +288,7 @@ fn sliver_with_extreme_varyings_stays_in_range() {
     assert!(drawn.contains(&'a') && drawn.contains(&'b'), "{drawn:?}");
 }
 
+#[cfg(all(feature = "gouraud", feature = "depth"))]
 fn render_frame(w: u16, h: u16, polys: &[Vec<ScreenVertex<1>>], ramp: &[u8; 256]) -> Vec<u8> {
     let mut buf = vec![0u8; w as usize * h as usize];
     let mut zb = vec![u16::MAX; w as usize * h as usize];
@@ -286,6 +300,7 @@ fn render_frame(w: u16, h: u16, polys: &[Vec<ScreenVertex<1>>], ramp: &[u8; 256]
     buf
 }
 
+#[cfg(all(feature = "gouraud", feature = "depth"))]
 fn render_bands(
     w: u16,
     h: u16,
@@ -314,10 +329,12 @@ fn render_bands(
     out
 }
 
+#[cfg(all(feature = "gouraud", feature = "depth"))]
 fn ramp_u8() -> [u8; 256] {
     core::array::from_fn(|i| i as u8)
 }
 
+#[cfg(all(feature = "gouraud", feature = "depth"))]
 #[test]
 fn bands_match_full_frame() {
     let v = |x: f64, y: f64, z: u16, i: i32| ScreenVertex::new(sp(x), sp(y), z, [i << 16]);
@@ -541,6 +558,7 @@ proptest! {
         check_against_oracle(14, 14, &[tri]);
     }
 
+    #[cfg(all(feature = "gouraud", feature = "depth"))]
     #[test]
     fn garbage_polygons_never_panic_or_escape(
         pts in proptest::collection::vec((any::<i32>(), any::<i32>(), any::<u16>(), any::<i32>()), 0..12),
@@ -591,11 +609,13 @@ proptest! {
     }
 }
 
+#[cfg(feature = "texture")]
 fn checker() -> [char; 16] {
     // 4×4 texels: row j, column i is a letter from "abcd" + row offset.
     core::array::from_fn(|k| char::from(b'a' + (k % 4) as u8 + 4 * (k / 4) as u8))
 }
 
+#[cfg(feature = "texture")]
 #[test]
 fn affine_texture_pattern() {
     // u, v from 0 to 8 over an 8×8 square: the 4×4 texture tiles twice,
@@ -632,6 +652,7 @@ fn affine_texture_pattern() {
     ]);
 }
 
+#[cfg(feature = "perspective")]
 #[test]
 fn perspective_texture_with_constant_depth_equals_affine() {
     // q constant (½): (u·q, v·q, q) must give the same texels as (u, v).
@@ -660,6 +681,7 @@ fn perspective_texture_with_constant_depth_equals_affine() {
     }
 }
 
+#[cfg(feature = "depth")]
 proptest! {
     #[test]
     fn depth_runs_match_per_pixel_reference(
@@ -743,8 +765,10 @@ proptest! {
 
 /// A framebuffer that hides [`Target::span_mut`], forcing the run-splitting
 /// path of the depth test.
+#[cfg(any(all(feature = "gouraud", feature = "depth"), feature = "perspective"))]
 struct Unfused<'a>(Framebuffer<'a, u8>);
 
+#[cfg(any(all(feature = "gouraud", feature = "depth"), feature = "perspective"))]
 impl Target for Unfused<'_> {
     type Color = u8;
     fn clip_rect(&self) -> crate::target::Rect {
@@ -758,6 +782,7 @@ impl Target for Unfused<'_> {
     }
 }
 
+#[cfg(all(feature = "gouraud", feature = "depth"))]
 proptest! {
     /// The fused depth-test-and-write loop (slice targets) gives exactly
     /// the pixels and keys of the run-splitting path, flat and Gouraud.
@@ -799,6 +824,7 @@ proptest! {
     }
 }
 
+#[cfg(feature = "perspective")]
 proptest! {
     /// Subdivided perspective texturing writes the same pixels into a
     /// slice target (run loop) as through `fill_with` (per-pixel closure).
@@ -835,6 +861,7 @@ proptest! {
     }
 }
 
+#[cfg(feature = "texture")]
 #[test]
 fn lit_affine_texture_scales_texels() {
     use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
@@ -876,6 +903,7 @@ fn lit_affine_texture_scales_texels() {
     }
 }
 
+#[cfg(all(feature = "gouraud", feature = "depth"))]
 proptest! {
     /// The triangle walker gives exactly the chain walker's pixels and
     /// keys: the same triangle with a repeated vertex goes through the
@@ -907,6 +935,7 @@ proptest! {
 
 /// Draws two triangles covering the same 32×32 square in both orders with
 /// a `K` depth buffer; returns how many pixels differ between the orders.
+#[cfg(feature = "depth")]
 fn crossing_planes_order_dependence<K: StoredDepth>(far: K) -> usize {
     let (w, h) = (32u16, 32u16);
     let n = w as usize * h as usize;
@@ -935,6 +964,7 @@ fn crossing_planes_order_dependence<K: StoredDepth>(far: K) -> usize {
     out[0].iter().zip(&out[1]).filter(|(p, q)| p != q).count()
 }
 
+#[cfg(feature = "depth")]
 #[test]
 fn u32_depth_keeps_the_interpolated_fraction() {
     // u16: pixels whose keys tie keep whichever triangle came first.
@@ -946,6 +976,7 @@ fn u32_depth_keeps_the_interpolated_fraction() {
     assert!(d32 <= 32, "u32: {d32} pixels depend on the order");
 }
 
+#[cfg(feature = "depth")]
 proptest! {
     /// With well separated depths (whole keys apart at every pixel) the
     /// u32 buffer draws exactly what the u16 buffer draws.
@@ -984,6 +1015,7 @@ proptest! {
 /// varyings saturates a gradient to `i64::MIN`, whose `abs()` overflowed
 /// while choosing the plane's fast path (a panic with debug assertions).
 /// It must draw without panicking and only inside the band.
+#[cfg(all(feature = "gouraud", feature = "depth"))]
 #[test]
 fn saturated_gradient_does_not_overflow() {
     let ramp: [u8; 256] = core::array::from_fn(|i| (i as u8).max(1));
@@ -1006,6 +1038,7 @@ fn saturated_gradient_does_not_overflow() {
     }
 }
 
+#[cfg(feature = "perspective")]
 proptest! {
     /// The reciprocal used at subdivided-run endpoints against the exact
     /// quotient in i128: never below it in magnitude, above it by less
@@ -1046,6 +1079,7 @@ proptest! {
 /// debug build, hence opt-in):
 /// `cargo test --release -p sightline --features full --lib recip62_exhaustive -- --ignored`.
 /// The sampled test above runs by default.
+#[cfg(feature = "perspective")]
 #[test]
 #[ignore = "2^30 divisors: run in release with --ignored (about 10 s)"]
 fn recip62_exhaustive() {
@@ -1056,6 +1090,7 @@ fn recip62_exhaustive() {
     }
 }
 
+#[cfg(feature = "perspective")]
 #[test]
 fn recip62_is_the_exact_ceiling() {
     use super::persp_div::recip62;

@@ -196,10 +196,7 @@ pub(crate) fn widening_mul(a: i32, b: i32) -> i64 {
 /// lies in (−2³¹, 2³¹) (|aₕ| ≤ 2¹⁵, bₗ < 2¹⁶), `aₗbₗ < 2³²` is unsigned and
 /// `|aₕbₕ| ≤ 2³⁰`, so every partial product is a 32-bit multiply.
 #[inline(always)]
-#[cfg_attr(
-    not(all(target_arch = "arm", not(target_has_atomic = "ptr"))),
-    allow(dead_code)
-)]
+#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
 pub(crate) fn split_widening_mul(a: i32, b: i32) -> i64 {
     let (al, ah) = ((a & 0xffff) as u32, a >> 16);
     let (bl, bh) = ((b & 0xffff) as u32, b >> 16);

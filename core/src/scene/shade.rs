@@ -3,14 +3,11 @@
 //! quantised meshes. Interpolation is each path's own: the raster path's
 //! varyings live in `pipeline::vertex`, the ray path shades at the hit.
 
-// Each helper serves the raster path's Gouraud or texture stage, the ray
-// path, or both; a build without some of those stages leaves some unused.
-#![cfg_attr(
-    not(all(feature = "gouraud", feature = "texture", feature = "raycast")),
-    allow(dead_code)
-)]
-
-use super::{Light, MeshData, vec3};
+// The per-vertex and per-hit helpers below that only the ray path calls
+// (it shades at the hit, see the module docs) exist with `raycast`.
+#[cfg(feature = "raycast")]
+use super::MeshData;
+use super::{Light, vec3};
 use crate::math::{Mat3, Vec3};
 use crate::scalar::Scalar;
 use crate::transform::{Euler, Pose};
@@ -79,6 +76,7 @@ pub(crate) fn pose<S: Scalar>(p: &Pose<f32>) -> Pose<S> {
 /// Object-space position of vertex `k` (zero if out of range; validated
 /// scenes never are).
 #[inline]
+#[cfg(feature = "raycast")]
 pub(crate) fn position<S: Scalar>(mesh: &MeshData<'_>, scale: S, k: u16) -> Vec3<S> {
     let p = mesh.positions.get(k as usize).copied().unwrap_or([0; 3]);
     Vec3::new(
@@ -133,6 +131,7 @@ pub(crate) fn face_direction<S: Scalar>(
 /// The world-space unit face normal of triangle `tri` under rotation
 /// `rot` ([`face_direction`], turned, normalised). `None` for a
 /// degenerate triangle.
+#[cfg(feature = "raycast")]
 pub(crate) fn face_normal<S: Scalar>(
     mesh: &MeshData<'_>,
     rot: &Mat3<S>,
@@ -144,6 +143,7 @@ pub(crate) fn face_normal<S: Scalar>(
 
 /// The world-space unit normal at vertex `k`: the mesh's vertex normal if
 /// it has them, else `face`.
+#[cfg(feature = "raycast")]
 pub(crate) fn vertex_normal<S: Scalar>(
     mesh: &MeshData<'_>,
     rot: &Mat3<S>,
@@ -165,6 +165,7 @@ pub(crate) fn vertex_normal<S: Scalar>(
 }
 
 /// The intensities at the three vertices of a Gouraud triangle.
+#[cfg(feature = "raycast")]
 pub(crate) fn vertex_intensities<S: Scalar>(
     mesh: &MeshData<'_>,
     rot: &Mat3<S>,
@@ -176,6 +177,7 @@ pub(crate) fn vertex_intensities<S: Scalar>(
 }
 
 /// The texture coordinates of vertex `k` in texels.
+#[cfg(feature = "raycast")]
 pub(crate) fn uv<S: Scalar>(mesh: &MeshData<'_>, k: u16) -> (S, S) {
     let t = mesh
         .uvs
@@ -187,6 +189,7 @@ pub(crate) fn uv<S: Scalar>(mesh: &MeshData<'_>, k: u16) -> (S, S) {
 
 /// A texel coordinate → integer texel: 16.16, then the integer part
 /// (floor), as the texture stage's coordinates are read.
+#[cfg(feature = "raycast")]
 pub(crate) fn texel<S: Scalar>(u: S) -> i32 {
     match u.to_subpixel(16) {
         Some(v) => v >> 16,

@@ -4,8 +4,8 @@ use crate::math::Vec3;
 use crate::raster::{DepthBuffer, Shade};
 use crate::scalar::{I16F16, Scalar};
 use crate::target::Framebuffer;
-use crate::transform::Pose;
 use crate::texture::{Texture, TextureError};
+use crate::transform::Pose;
 use embedded_graphics::pixelcolor::IntoStorage;
 use std::vec;
 
@@ -371,6 +371,8 @@ fn renderer_with_a_direct_camera_equals_the_scene_camera() {
         Renderer::<f32>::new(&bad, 8, 8),
         Err(SceneError::NonFinite { what: "camera" })
     ));
+}
+
 /// `TextureMode::Auto` draws each triangle exactly as `Affine` or as
 /// `Perspective` does, as `choose_mapping`'s bound decides: affine iff
 /// `Δuv·(z_max − z_min)/(4·z_min) ≤ AUTO_AFFINE_MAX_ERROR`, the oracle

@@ -730,6 +730,8 @@ fn refinement_that_cannot_converge_is_reported() {
         }
         Err(e) => panic!("{e}"),
     }
+}
+
 /// `invert` is the solver on `A X = I`; a singular 4×4 (last row = w = z)
 /// is reported with its column, and `invert_affine` round-trips.
 #[test]

@@ -4,7 +4,8 @@ use super::layout::{BufferError, Layout};
 use super::{Rect, Target};
 
 /// A frame of `C` pixels in a caller-supplied slice, row-major with a
-/// stride (elements from one row's start to the next).
+/// stride (elements from one row's start to the next): the [`Band`] that
+/// holds frame rows `0..height`, with the frame's names for its size.
 ///
 /// # Guarantees
 ///
@@ -30,10 +31,7 @@ use super::{Rect, Target};
 /// );
 /// ```
 #[derive(Debug)]
-pub struct Framebuffer<'a, C> {
-    buf: &'a mut [C],
-    layout: Layout,
-}
+pub struct Framebuffer<'a, C>(Band<'a, C>);
 
 impl<'a, C: Copy> Framebuffer<'a, C> {
     /// Wraps `buf` as `width`×`height` pixels with `stride` elements per
@@ -49,64 +47,61 @@ impl<'a, C: Copy> Framebuffer<'a, C> {
         height: u16,
         stride: usize,
     ) -> Result<Self, BufferError> {
-        let layout = Layout::new(buf.len(), width, height, stride, 0)?;
-        Ok(Self { buf, layout })
+        // A frame is the band that holds rows 0..height.
+        Band::new(buf, width, height, stride, 0).map(Self)
     }
 
     /// Width in pixels.
     #[must_use]
     pub fn width(&self) -> u16 {
-        self.layout.width
+        self.0.width()
     }
 
     /// Height in pixels.
     #[must_use]
     pub fn height(&self) -> u16 {
-        self.layout.height
+        self.0.rows()
     }
 
     /// The pixel at (x, y), or `None` outside the frame.
     #[must_use]
     pub fn pixel(&self, x: i32, y: i32) -> Option<C> {
-        self.layout
-            .index(x, y)
-            .and_then(|i| self.buf.get(i).copied())
+        self.0.pixel(x, y)
     }
 
     /// Sets every pixel (not the stride padding) to `color`.
     pub fn clear(&mut self, color: C) {
-        for y in 0..self.layout.height as i32 {
-            self.fill_solid(y, 0, self.layout.width as u32, color);
-        }
+        self.0.clear(color);
     }
 
     /// The underlying slice.
     #[must_use]
     pub fn as_slice(&self) -> &[C] {
-        self.buf
+        self.0.as_slice()
     }
 }
 
 impl<C: Copy> Target for Framebuffer<'_, C> {
     type Color = C;
 
+    #[inline]
     fn clip_rect(&self) -> Rect {
-        self.layout.rect()
+        self.0.clip_rect()
     }
 
     #[inline]
     fn fill_solid(&mut self, y: i32, x: i32, len: u32, color: C) {
-        fill_solid(self.buf, &self.layout, y, x, len, color);
+        self.0.fill_solid(y, x, len, color);
     }
 
     #[inline]
     fn fill_with<F: FnMut() -> C>(&mut self, y: i32, x: i32, len: u32, colors: F) {
-        fill_with(self.buf, &self.layout, y, x, len, colors);
+        self.0.fill_with(y, x, len, colors);
     }
 
     #[inline]
     fn span_mut(&mut self, y: i32, x: i32, len: u32) -> Option<&mut [C]> {
-        span_mut(self.buf, &self.layout, y, x, len)
+        self.0.span_mut(y, x, len)
     }
 }
 
@@ -145,8 +140,9 @@ impl<C: Copy> Target for Framebuffer<'_, C> {
 /// ```
 #[derive(Debug)]
 pub struct Band<'a, C> {
-    buf: &'a mut [C],
-    layout: Layout,
+    // The depth buffer's hot loops read these directly.
+    pub(crate) buf: &'a mut [C],
+    pub(crate) layout: Layout,
 }
 
 impl<'a, C: Copy> Band<'a, C> {
@@ -184,6 +180,12 @@ impl<'a, C: Copy> Band<'a, C> {
         Ok(())
     }
 
+    /// Width in pixels.
+    #[must_use]
+    pub fn width(&self) -> u16 {
+        self.layout.width
+    }
+
     /// First frame row held.
     #[must_use]
     pub fn y0(&self) -> i32 {
@@ -217,53 +219,57 @@ impl<'a, C: Copy> Band<'a, C> {
     pub fn as_slice(&self) -> &[C] {
         self.buf
     }
+
+    /// The part of span `x..x+len` of frame row `y` inside the band:
+    /// `(skip, pixels)` where `skip` counts the leading pixels clipped
+    /// away; `None` if nothing is inside.
+    #[inline]
+    pub(crate) fn clipped_span_mut(&mut self, y: i32, x: i32, len: u32) -> Option<(u32, &mut [C])> {
+        let (skip, r) = self.layout.span(y, x, len)?;
+        // `get_mut` rather than indexing: the range is in bounds by the
+        // validation in `Layout::new`, and this keeps the no-panic promise
+        // checkable locally.
+        self.buf.get_mut(r).map(|row| (skip, row))
+    }
+
+    /// The whole span `x..x+len` of frame row `y`, or `None` if any of it
+    /// is outside.
+    #[inline]
+    pub(crate) fn exact_span_mut(&mut self, y: i32, x: i32, len: u32) -> Option<&mut [C]> {
+        self.buf.get_mut(self.layout.span_exact(y, x, len)?)
+    }
 }
 
 impl<C: Copy> Target for Band<'_, C> {
     type Color = C;
 
+    #[inline]
     fn clip_rect(&self) -> Rect {
         self.layout.rect()
     }
 
     #[inline]
     fn fill_solid(&mut self, y: i32, x: i32, len: u32, color: C) {
-        fill_solid(self.buf, &self.layout, y, x, len, color);
+        if let Some((_, row)) = self.clipped_span_mut(y, x, len) {
+            fill_unrolled(row, color);
+        }
     }
 
     #[inline]
-    fn fill_with<F: FnMut() -> C>(&mut self, y: i32, x: i32, len: u32, colors: F) {
-        fill_with(self.buf, &self.layout, y, x, len, colors);
+    fn fill_with<F: FnMut() -> C>(&mut self, y: i32, x: i32, len: u32, mut colors: F) {
+        if let Some((skip, row)) = self.clipped_span_mut(y, x, len) {
+            for _ in 0..skip {
+                colors();
+            }
+            for px in row {
+                *px = colors();
+            }
+        }
     }
 
     #[inline]
     fn span_mut(&mut self, y: i32, x: i32, len: u32) -> Option<&mut [C]> {
-        span_mut(self.buf, &self.layout, y, x, len)
-    }
-}
-
-/// The whole span `x..x+len` of row `y`, or `None` if any of it is
-/// outside.
-#[inline]
-fn span_mut<'b, C>(
-    buf: &'b mut [C],
-    layout: &Layout,
-    y: i32,
-    x: i32,
-    len: u32,
-) -> Option<&'b mut [C]> {
-    buf.get_mut(layout.span_exact(y, x, len)?)
-}
-
-#[inline]
-fn fill_solid<C: Copy>(buf: &mut [C], layout: &Layout, y: i32, x: i32, len: u32, color: C) {
-    if let Some((_, r)) = layout.span(y, x, len) {
-        // `get_mut` rather than indexing: the range is in bounds by the
-        // validation in `Layout::new`, and this keeps the no-panic promise
-        // checkable locally.
-        if let Some(row) = buf.get_mut(r) {
-            fill_unrolled(row, color);
-        }
+        self.exact_span_mut(y, x, len)
     }
 }
 
@@ -281,25 +287,4 @@ fn fill_unrolled<C: Copy>(row: &mut [C], color: C) {
         }
     }
     chunks.into_remainder().fill(color);
-}
-
-#[inline]
-fn fill_with<C: Copy, F: FnMut() -> C>(
-    buf: &mut [C],
-    layout: &Layout,
-    y: i32,
-    x: i32,
-    len: u32,
-    mut colors: F,
-) {
-    if let Some((skip, r)) = layout.span(y, x, len) {
-        for _ in 0..skip {
-            colors();
-        }
-        if let Some(row) = buf.get_mut(r) {
-            for px in row {
-                *px = colors();
-            }
-        }
-    }
 }

@@ -99,8 +99,7 @@ pub trait Target {
     /// and writes each pixel in one loop instead of splitting the span
     /// into runs.
     #[inline]
-    fn span_mut(&mut self, y: i32, x: i32, len: u32) -> Option<&mut [Self::Color]> {
-        let _ = (y, x, len);
+    fn span_mut(&mut self, _y: i32, _x: i32, _len: u32) -> Option<&mut [Self::Color]> {
         None
     }
 }
@@ -122,5 +121,5 @@ impl<T: Target + ?Sized> Target for &mut T {
     }
 }
 
-#[cfg(all(test, feature = "gouraud"))]
+#[cfg(test)]
 mod tests;

@@ -18,7 +18,9 @@
 
 use sightline::camera::{Camera, CameraError, Projection};
 use sightline::math::{Affine3, Mat3, Vec3};
-use sightline::pipeline::{DrawError, Pipeline, PipelineError, Uv, UvPerspective, Vertex};
+use sightline::pipeline::{
+    DrawError, DrawOutcome, Pipeline, PipelineError, Uv, UvPerspective, Vertex,
+};
 use sightline::raster::{
     AffineTexture, COORD_LIMIT, FillOutcome, Flat, NoDepth, PerspectiveTexture, ScreenVertex,
     fill_polygon,
@@ -54,7 +56,7 @@ fn pipeline<S: Scalar>(near: f64, far: f64) -> Result<Pipeline<S>, PipelineError
 fn draw<S: Scalar>(
     pipe: &Pipeline<S>,
     poly: &[Vec3<f64>],
-) -> (Result<FillOutcome, DrawError>, Vec<bool>) {
+) -> (Result<DrawOutcome, DrawError>, Vec<bool>) {
     let mut buf = vec![0u8; usize::from(W) * usize::from(W)];
     let mut fb = Framebuffer::new(&mut buf, W, W, usize::from(W)).unwrap();
     let vs: Vec<Vertex<S, ()>> = poly
@@ -222,7 +224,10 @@ fn i16f16_transform_saturates_at_the_range_limit() {
     let n = covered.iter().filter(|&&c| c).count();
     println!("I16F16 triangle at the range limit: {out:?}, {n} pixels");
     // Beyond the far plane (32000): clipped away entirely.
-    assert!(matches!(out, Ok(FillOutcome::Empty)), "{out:?}");
+    assert!(
+        matches!(out, Ok(DrawOutcome::Filled(FillOutcome::Empty))),
+        "{out:?}"
+    );
     assert_eq!(n, 0);
 }
 
@@ -628,7 +633,7 @@ fn sliver_needle_and_zero_area_polygons() {
             assert_eq!(bad, 0, "{} {name}", S::NAME);
             if name.starts_with("collinear") || name.starts_with("repeated") {
                 assert_eq!(n, 0);
-                assert_eq!(out, Ok(FillOutcome::Empty));
+                assert_eq!(out, Ok(DrawOutcome::Filled(FillOutcome::Empty)));
             }
         }
     }

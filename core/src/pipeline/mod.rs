@@ -413,7 +413,7 @@ impl<S: Scalar> Pipeline<S> {
         depth: &mut Z,
         shader: &Sh,
         poly: &[Vertex<S, A>],
-    ) -> Result<FillOutcome, DrawError>
+    ) -> Result<DrawOutcome, DrawError>
     where
         A: Varyings<S, K>,
         T: Target,
@@ -421,9 +421,27 @@ impl<S: Scalar> Pipeline<S> {
         Sh: SpanShader<K, Color = T::Color>,
     {
         Ok(match self.project_polygon(poly)? {
-            Some(screen) => fill_polygon(target, depth, shader, &screen),
-            None => FillOutcome::Culled,
+            Some(screen) => DrawOutcome::Filled(fill_polygon(target, depth, shader, &screen)),
+            None => DrawOutcome::Culled,
         })
+    }
+}
+
+/// What [`Pipeline::draw_polygon`] did.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DrawOutcome {
+    /// The polygon reached the scan converter, with its outcome.
+    Filled(FillOutcome),
+    /// Dropped by face culling ([`Pipeline::with_cull`]) before scan
+    /// conversion.
+    Culled,
+}
+
+impl DrawOutcome {
+    /// Whether spans were emitted ([`FillOutcome::Drawn`]).
+    #[must_use]
+    pub fn is_drawn(self) -> bool {
+        self == Self::Filled(FillOutcome::Drawn)
     }
 }
 

@@ -4,7 +4,7 @@ use crate::camera::Projection;
 use crate::raster::DepthBuffer;
 #[cfg(feature = "gouraud")]
 use crate::raster::Gouraud;
-use crate::raster::{FillOutcome, Flat, NoDepth};
+use crate::raster::{Flat, NoDepth};
 use crate::scalar::{I16F16, Scalar};
 use crate::test_util::MockTarget;
 use proptest::prelude::*;
@@ -682,9 +682,10 @@ fn culling<S: Scalar>() {
         let rb = q
             .draw_polygon(&mut t, &mut NoDepth, &Flat('#'), &back)
             .unwrap();
-        assert_eq!(rf == FillOutcome::Drawn, f, "{cull:?}");
-        assert_eq!(rb == FillOutcome::Drawn, b, "{cull:?}");
-        assert_eq!(rf == FillOutcome::Culled, !f);
+        assert_eq!(rf.is_drawn(), f, "{cull:?}");
+        assert_eq!(rb.is_drawn(), b, "{cull:?}");
+        assert_eq!(rf == DrawOutcome::Culled, !f);
+        assert_eq!(rb == DrawOutcome::Culled, !b);
     }
 }
 

@@ -121,9 +121,6 @@ pub enum FillOutcome {
     Empty,
     /// A vertex lies outside ±[`COORD_LIMIT`]; nothing was drawn.
     Rejected,
-    /// Dropped by face culling (only from
-    /// [`Pipeline::draw_polygon`](crate::pipeline::Pipeline::draw_polygon)).
-    Culled,
 }
 
 /// One chain of edges from the top vertex to the bottom vertex.

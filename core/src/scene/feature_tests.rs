@@ -8,6 +8,7 @@ use super::builtin::{BUNNY, CORRIDOR, CORRIDOR_AFFINE, CUBE};
 use super::*;
 use crate::camera::Projection;
 use crate::math::Vec3;
+use crate::pipeline::DrawOutcome;
 use crate::pipeline::{Pipeline, Vertex};
 use crate::raster::{FillOutcome, Flat, NoDepth};
 use crate::scalar::{I16F16, Scalar};
@@ -118,14 +119,14 @@ fn the_far_plane_clips_only_when_asked() {
     // change behaviour).
     assert!(!base.clips_far());
     let (r, drawn) = draw(&base);
-    assert_eq!(r, Ok(FillOutcome::Drawn));
+    assert_eq!(r, Ok(DrawOutcome::Filled(FillOutcome::Drawn)));
     assert!(drawn > 100, "{drawn}");
     #[cfg(feature = "clip-far")]
     {
         let clipped = base.with_far_clip(true);
         assert!(clipped.clips_far());
         let (r, drawn) = draw(&clipped);
-        assert_ne!(r, Ok(FillOutcome::Drawn));
+        assert_ne!(r, Ok(DrawOutcome::Filled(FillOutcome::Drawn)));
         assert_eq!(drawn, 0);
         // And back.
         assert_eq!(draw(&clipped.with_far_clip(false)), draw(&base));

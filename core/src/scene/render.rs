@@ -486,7 +486,14 @@ impl<S: Scalar> Frame<'_, '_, S> {
                     }
                 }
                 #[cfg(feature = "texture")]
-                Material::Texture { texture: tex, mode } => {
+                Material::Texture {
+                    texture: tex,
+                    #[cfg(feature = "perspective")]
+                    mode,
+                    ..
+                } => {
+                    // Without `perspective`, only Affine gets here: the
+                    // others are refused before drawing.
                     let Some(affine) = AffineTexture::<_, RepeatPow2>::new(tex) else {
                         continue;
                     };
@@ -536,7 +543,6 @@ impl<S: Scalar> Frame<'_, '_, S> {
                         }
                         continue;
                     }
-                    let _ = mode; // Affine (others are refused without `perspective`)
                     for &tri in mesh.triangles() {
                         t.draw(target, depth, stats, tri, affine_in, affine_attr, |_| {
                             affine

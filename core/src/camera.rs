@@ -302,34 +302,34 @@ pub enum ProjectionKind<S> {
     },
 }
 
-/// A projection and the screen centre it projects about.
+/// A projection and the screen center it projects about.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Projection<S> {
     /// Parallel or perspective, with its parameter.
     pub kind: ProjectionKind<S>,
     /// Screen position of the view axis, in pixels (usually the viewport
-    /// centre (w/2, h/2)).
-    pub centre: Vec2<S>,
+    /// center (w/2, h/2)).
+    pub center: Vec2<S>,
 }
 
 impl<S: Scalar> Projection<S> {
     /// Perspective projection with the given focus distance (pixels),
-    /// centred on a `width`×`height` viewport.
+    /// centered on a `width`×`height` viewport.
     #[must_use]
     pub fn perspective(focus: S, width: u16, height: u16) -> Self {
         Self {
             kind: ProjectionKind::Perspective { focus },
-            centre: centre(width, height),
+            center: center(width, height),
         }
     }
 
-    /// Parallel projection with `scale` pixels per world unit, centred on a
+    /// Parallel projection with `scale` pixels per world unit, centered on a
     /// `width`×`height` viewport.
     #[must_use]
     pub fn parallel(scale: S, width: u16, height: u16) -> Self {
         Self {
             kind: ProjectionKind::Parallel { scale },
-            centre: centre(width, height),
+            center: center(width, height),
         }
     }
 
@@ -375,8 +375,8 @@ impl<S: Scalar> Projection<S> {
                 let sy = p.y.checked_mul(scale)?;
                 (
                     Vec2::new(
-                        self.centre.x.checked_add(sx)?,
-                        self.centre.y.checked_add(sy)?,
+                        self.center.x.checked_add(sx)?,
+                        self.center.y.checked_add(sy)?,
                     ),
                     p.z,
                 )
@@ -409,8 +409,8 @@ impl<S: Scalar> Projection<S> {
                 };
                 (
                     Vec2::new(
-                        self.centre.x.checked_add(sx)?,
-                        self.centre.y.checked_add(sy)?,
+                        self.center.x.checked_add(sx)?,
+                        self.center.y.checked_add(sy)?,
                     ),
                     inv_z,
                 )
@@ -425,7 +425,7 @@ impl<S: Scalar> Projection<S> {
     #[must_use]
     pub fn to_mat4(&self) -> Mat4<S> {
         let (z, o) = (S::ZERO, S::ONE);
-        let (cx, cy) = (self.centre.x, self.centre.y);
+        let (cx, cy) = (self.center.x, self.center.y);
         match self.kind {
             ProjectionKind::Parallel { scale } => Mat4 {
                 m: [
@@ -466,7 +466,7 @@ fn focus_ratio<S: Scalar>(x: S, focus: S, z: S, overflow: &mut bool) -> S {
     }
 }
 
-fn centre<S: Scalar>(width: u16, height: u16) -> Vec2<S> {
+fn center<S: Scalar>(width: u16, height: u16) -> Vec2<S> {
     Vec2::new(
         S::from_i32(width as i32) * S::HALF,
         S::from_i32(height as i32) * S::HALF,

@@ -100,10 +100,10 @@
 //!   the screen. A camera with zero angles looks along world −Z with world
 //!   +Y up on the screen.
 //! - **Screen** space is in pixels: x to the right, y down, origin at the
-//!   top-left corner of the top-left pixel, so pixel (i, j) has its centre
+//!   top-left corner of the top-left pixel, so pixel (i, j) has its center
 //!   at (i + ½, j + ½). Perspective projection is `x_s = cx + f·x/z`,
 //!   `y_s = cy + f·y/z`, with the focus distance `f` in pixels and
-//!   (cx, cy) usually the viewport centre.
+//!   (cx, cy) usually the viewport center.
 //!
 //! ## Numeric representations
 //!
@@ -155,7 +155,7 @@
 //! measured on their own.
 //!
 //! Features are additive: each adds code and API and never changes what
-//! existing calls do; a behaviour is chosen by an argument (e.g. far-plane
+//! existing calls do; a behavior is chosen by an argument (e.g. far-plane
 //! clipping by [`Pipeline::with_far_clip`](pipeline::Pipeline::with_far_clip)).
 //! A feature that needs another turns it on (`perspective` turns on
 //! `texture`; `sphere`, `grid` and `column` turn on `raycast`; `column`

@@ -2,7 +2,7 @@
 //! size N×N and `B` of M columns (const generics, no allocation), returning
 //! the solution together with the diagnostics a caller needs to trust it.
 //!
-//! This generalises the viewing-process chapter's routine, which solves
+//! This generalizes the viewing-process chapter's routine, which solves
 //! `A X = B` for an `m`-column `B`, and follows LAPACK's expert driver
 //! `xGESVX` in what it reports:
 //!
@@ -154,7 +154,7 @@ pub enum SolveError {
     NonFinite,
     /// Floats only: even after iterative refinement, the residual ratio
     /// ‖b − A x̂‖₁ / (‖A‖₁ ‖x̂‖₁ n u) of the best iterate (module docs) is
-    /// not below [`RESIDUAL_RATIO_MAX`] = 30. The factorisation is too
+    /// not below [`RESIDUAL_RATIO_MAX`] = 30. The factorization is too
     /// inaccurate (pivot growth near 1/u) for refinement to converge, so no
     /// solution backward stable to LAPACK's standard exists from it.
     Inaccurate {
@@ -254,7 +254,7 @@ impl<S: Scalar> SolveConfig<S> {
     }
 }
 
-/// An LU factorisation `P A = L U` with unit lower-triangular `L`, kept in
+/// An LU factorization `P A = L U` with unit lower-triangular `L`, kept in
 /// one array as LAPACK does, plus the permutation and the growth factor.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Lu<S, const N: usize> {
@@ -437,7 +437,7 @@ impl<S: Scalar, const N: usize> Lu<S, N> {
         })
     }
 
-    /// The pivot growth factor ρ = max|a⁽ᵏ⁾| / max|a| of the factorisation
+    /// The pivot growth factor ρ = max|a⁽ᵏ⁾| / max|a| of the factorization
     /// (computed on request; `max|a| > 0` since a zero matrix is singular).
     #[must_use]
     pub fn growth(&self) -> S {

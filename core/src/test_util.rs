@@ -113,7 +113,7 @@ impl Target for MockTarget {
 }
 
 /// Pixel (i, j) is covered by the convex polygon under the top-left rule,
-/// computed from exact i128 edge functions at the centre (16i+8, 16j+8).
+/// computed from exact i128 edge functions at the center (16i+8, 16j+8).
 /// Independent of the scan converter: no stepping, no chains.
 pub fn oracle_covers<const K: usize>(poly: &[ScreenVertex<K>], i: i64, j: i64) -> bool {
     let n = poly.len();

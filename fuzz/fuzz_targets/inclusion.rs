@@ -2,7 +2,7 @@
 //! binary fan, slabs) on integer-grid polygons, in f32, f64 and I16F16.
 //!
 //! Polygons are convex hulls, star-shaped polygons (vertices sorted by
-//! angle around a centre, so always simple) or a convex hull split along a
+//! angle around a center, so always simple) or a convex hull split along a
 //! diagonal into two polygons, in the reference plane of any axis and in
 //! either orientation. Query points are arbitrary half-integers, vertices
 //! and edge midpoints (±½): many lie exactly on the boundary.
@@ -48,7 +48,7 @@ struct Input {
     reverse: bool,
     zc: i8,
     wide: bool,
-    centre: (i16, i16),
+    center: (i16, i16),
     diag: (u8, u8),
     verts: Vec<(i16, i16)>,
     queries: Vec<Query>,
@@ -152,7 +152,7 @@ fn run<T: Scalar>(input: &Input, limit: i64) {
             }
         }
         _ => {
-            let ctr = [c(input.centre.0), c(input.centre.1)];
+            let ctr = [c(input.center.0), c(input.center.1)];
             let mut pts: Vec<[i64; 2]> = raw.iter().copied().filter(|&p| p != ctr).collect();
             let half =
                 |p: [i64; 2]| (p[1] - ctr[1] < 0 || (p[1] == ctr[1] && p[0] - ctr[0] < 0)) as u8;

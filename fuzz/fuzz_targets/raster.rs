@@ -11,7 +11,7 @@
 //! - through a recording target: every span lies inside the clip
 //!   rectangle, at most one span per row;
 //! - triangles with in-range vertices: the set of pixels drawn equals the
-//!   exact coverage at pixel centres, computed with i64 edge functions and
+//!   exact coverage at pixel centers, computed with i64 edge functions and
 //!   the documented top-left rule (left and horizontal top edges closed,
 //!   right and bottom edges open); so two triangles sharing an edge
 //!   (ABC, CBD with A and D on opposite sides) never both write a pixel,
@@ -230,7 +230,7 @@ fn draw(input: &Input, verts: &[ScreenVertex<1>]) -> Vec<(i32, i32)> {
 }
 
 /// Exact top-left-rule coverage of a triangle (28.4 vertices) at pixel
-/// centres inside the band.
+/// centers inside the band.
 fn coverage(input: &Input, t: [(i64, i64); 3]) -> Vec<(i32, i32)> {
     let (w, h) = (input.w as i64 % 24 + 1, input.h as i64 % 16 + 1);
     let y0 = input.y0 as i64 % 8;

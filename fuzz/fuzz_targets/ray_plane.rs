@@ -8,7 +8,7 @@
 //! hit; and whenever the
 //! double-double reference `t* = u·(P − Q) / u·d` (u = n/|n| from the
 //! stored inputs) is well defined, the result agrees with it within the
-//! error bound of the three operations involved (normalising n, two dot
+//! error bound of the three operations involved (normalizing n, two dot
 //! products of differences, one division):
 //!
 //! ```text
@@ -18,7 +18,7 @@
 //! with r = P − Q, ε = `T::EPSILON` and f the absolute error of one
 //! rounding: the fixed-point step, or for floats the smallest subnormal
 //! (gradual underflow, e.g. a normal component below the range after
-//! normalising). A missing hit is allowed only where the bound cannot decide
+//! normalizing). A missing hit is allowed only where the bound cannot decide
 //! (t* within the bound of t_min, |u·d| within its own error of 0) or an
 //! intermediate leaves the range of the type (documented as no hit).
 #![no_main]

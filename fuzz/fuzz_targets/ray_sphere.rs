@@ -35,11 +35,11 @@ use sightline::scalar::{I16F16, Scalar};
 #[derive(Arbitrary, Debug)]
 struct Input {
     kind: Kind,
-    centre: [Num; 3],
+    center: [Num; 3],
     radius: Num,
     origin: [Num; 3],
     dir: [Num; 3],
-    /// Aim at the centre plus this offset (when Some), to make hits likely.
+    /// Aim at the center plus this offset (when Some), to make hits likely.
     aim: Option<[Num; 3]>,
     t_min: Num,
 }
@@ -51,7 +51,7 @@ fn pow2_near(x: f64) -> f64 {
 }
 
 fn run<T: Scalar>(input: &Input) {
-    let c: sightline::math::Vec3<T> = common::v3(input.centre);
+    let c: sightline::math::Vec3<T> = common::v3(input.center);
     let r: T = common::conv(input.radius.value());
     let sphere = match Sphere::new(c, r) {
         Ok(s) => s,

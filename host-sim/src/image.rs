@@ -1,4 +1,4 @@
-//! Images in the scene colour (Rgb565), PNG output and comparison.
+//! Images in the scene color (Rgb565), PNG output and comparison.
 
 use sightline::scene::Color;
 use std::io::Write;
@@ -81,7 +81,7 @@ pub struct Rgb8Image {
     pub rgb: Vec<u8>,
 }
 
-/// Reads any 8-bit-convertible PNG as RGB (grey is expanded, alpha
+/// Reads any 8-bit-convertible PNG as RGB (gray is expanded, alpha
 /// dropped).
 ///
 /// # Errors
@@ -127,7 +127,7 @@ pub fn read_png_rgb8_limited(path: &Path, max_side: u32) -> Result<Rgb8Image, St
             .chunks_exact(2)
             .flat_map(|p| [p[0], p[0], p[0]])
             .collect(),
-        png::ColorType::Indexed => return Err(err(&"indexed colour was not expanded")),
+        png::ColorType::Indexed => return Err(err(&"indexed color was not expanded")),
     };
     if rgb.len() != n * 3 {
         return Err(err(&"unexpected buffer size"));
@@ -196,7 +196,7 @@ pub fn agreement(a: &Image, b: &Image) -> Agreement {
     r
 }
 
-/// A diff image: equal pixels as a dimmed grey of `a`, pixels within
+/// A diff image: equal pixels as a dimmed gray of `a`, pixels within
 /// tolerance yellow, others red.
 #[must_use]
 pub fn diff_rgb8(a: &Image, b: &Image) -> Vec<u8> {

@@ -57,7 +57,7 @@ pub enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
         /// Write an animated PNG (APNG) of N frames that turns the objects
-        /// once about the world up axis through the scene centre (camera
+        /// once about the world up axis through the scene center (camera
         /// and light stay); 1 writes the still PNG.
         #[arg(long, value_name = "N", value_parser = turntable::parse_frames)]
         frames: Option<u32>,
@@ -68,7 +68,7 @@ pub enum Command {
     /// List the built-in scenes.
     List,
     /// Render a scene with both paths, report the agreement and write a
-    /// diff PNG (grey: equal, yellow: within tolerance, red: different).
+    /// diff PNG (gray: equal, yellow: within tolerance, red: different).
     Compare {
         /// Built-in scene name or path to a .ron scene file.
         scene: String,

@@ -20,7 +20,7 @@ use std::time::{Duration, Instant};
 pub enum Method {
     /// World→screen: the pipeline and scan converter.
     Raster,
-    /// Screen→world: one ray per pixel centre.
+    /// Screen→world: one ray per pixel center.
     Ray,
     /// Both (two images).
     Both,

@@ -6,7 +6,7 @@
 //! The objects and spheres turn; the camera and the light stay where the
 //! scene puts them, as on a real turntable. Frame `k` of `N` turns every
 //! object and sphere by `θ_k = 2π·k/N` about the vertical line (world +Y)
-//! through the scene's centre ([`centre`]): an object's origin `O` moves
+//! through the scene's center ([`center`]): an object's origin `O` moves
 //! to `C + Ry(θ)·(O − C)` and its yaw grows by `θ`. Since a pose is
 //! `T(O)·Ry(yaw)·Rx(pitch)·Rz(roll)` (yaw outermost, about world +Y), this
 //! turns every point of the object by exactly `Ry(θ)` about the axis,
@@ -88,11 +88,11 @@ pub fn check_size(frames: u32, width: u16, height: u16) -> Result<(), String> {
     Ok(())
 }
 
-/// The axis of the turn: `(x, z)` of the centre of the world-space
+/// The axis of the turn: `(x, z)` of the center of the world-space
 /// bounding box of every mesh vertex (through its pose) and every sphere.
 /// `(0, 0)` for a scene with neither.
 #[must_use]
-pub fn centre(scene: &Scene<'_>) -> (f64, f64) {
+pub fn center(scene: &Scene<'_>) -> (f64, f64) {
     let mut lo = [f64::INFINITY; 2];
     let mut hi = [f64::NEG_INFINITY; 2];
     let mut add = |x: f64, z: f64, r: f64| {
@@ -110,8 +110,8 @@ pub fn centre(scene: &Scene<'_>) -> (f64, f64) {
     }
     for s in scene.spheres {
         add(
-            f64::from(s.centre[0]),
-            f64::from(s.centre[2]),
+            f64::from(s.center[0]),
+            f64::from(s.center[2]),
             f64::from(s.radius),
         );
     }
@@ -122,7 +122,7 @@ pub fn centre(scene: &Scene<'_>) -> (f64, f64) {
     }
 }
 
-/// `(x, z)` turned by `angle` about `centre`, by the right-hand rule about
+/// `(x, z)` turned by `angle` about `center`, by the right-hand rule about
 /// +Y (as `Ry` of [`sightline::transform::Euler::to_mat3`]), in f64.
 fn turn_xz(x: f32, z: f32, (cx, cz): (f64, f64), angle: f64) -> (f32, f32) {
     let (s, c) = angle.sin_cos();
@@ -131,11 +131,11 @@ fn turn_xz(x: f32, z: f32, (cx, cz): (f64, f64), angle: f64) -> (f32, f32) {
 }
 
 /// The objects and spheres of `scene` turned by `angle` radians about the
-/// vertical axis through `centre` (see the module docs).
+/// vertical axis through `center` (see the module docs).
 #[must_use]
 pub fn turned<'a>(
     scene: &Scene<'a>,
-    centre: (f64, f64),
+    center: (f64, f64),
     angle: f64,
 ) -> (Vec<SceneObject<'a>>, Vec<SceneSphere>) {
     let objects = scene
@@ -143,7 +143,7 @@ pub fn turned<'a>(
         .iter()
         .map(|o| {
             let mut o = *o;
-            let (x, z) = turn_xz(o.pose.origin.x, o.pose.origin.z, centre, angle);
+            let (x, z) = turn_xz(o.pose.origin.x, o.pose.origin.z, center, angle);
             o.pose.origin.x = x;
             o.pose.origin.z = z;
             o.pose.angles.yaw = (f64::from(o.pose.angles.yaw) + angle) as f32;
@@ -155,9 +155,9 @@ pub fn turned<'a>(
         .iter()
         .map(|s| {
             let mut s = *s;
-            let (x, z) = turn_xz(s.centre[0], s.centre[2], centre, angle);
-            s.centre[0] = x;
-            s.centre[2] = z;
+            let (x, z) = turn_xz(s.center[0], s.center[2], center, angle);
+            s.center[0] = x;
+            s.center[2] = z;
             s
         })
         .collect();
@@ -253,7 +253,7 @@ pub fn render_frames(
     let fail = |k: u32, e: &dyn std::fmt::Display| {
         format!("scene {} ({what}, turntable frame {k}): {e}", scene.name)
     };
-    let c = centre(scene);
+    let c = center(scene);
     let mut report = FrameProgress::new(progress, frames, what);
     let mut out = Vec::with_capacity(frames as usize);
     for k in 0..frames {
@@ -411,16 +411,16 @@ mod tests {
         let (_, spheres) = turned(scene, (0.0, 0.0), std::f64::consts::FRAC_PI_2);
         for (s, t) in scene.spheres.iter().zip(&spheres) {
             // A quarter turn by the right-hand rule about +Y: (x, z) → (z, −x).
-            assert!((t.centre[0] - s.centre[2]).abs() < 1e-6, "{t:?}");
-            assert!((t.centre[2] + s.centre[0]).abs() < 1e-6, "{t:?}");
-            assert_eq!((t.centre[1], t.radius), (s.centre[1], s.radius));
+            assert!((t.center[0] - s.center[2]).abs() < 1e-6, "{t:?}");
+            assert!((t.center[2] + s.center[0]).abs() < 1e-6, "{t:?}");
+            assert_eq!((t.center[1], t.radius), (s.center[1], s.radius));
         }
     }
 
     #[test]
     fn centre_is_the_middle_of_the_world_bounding_box() {
         // Corridor: x ∈ [−2, 2], z ∈ [−24, 0].
-        assert_eq!(centre(&builtin::CORRIDOR), (0.0, -12.0));
+        assert_eq!(center(&builtin::CORRIDOR), (0.0, -12.0));
     }
 
     #[test]

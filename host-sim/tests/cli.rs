@@ -303,11 +303,11 @@ fn maze_renders_with_the_column_caster() {
     assert!(text.contains("column caster"), "{text}");
     let img = read_png_rgb8(&file).unwrap();
     assert_eq!((img.width, img.height), (64, 48));
-    // Walls, ceiling and floor: more than three colours.
-    let mut colours: Vec<&[u8]> = img.rgb.chunks(3).collect();
-    colours.sort_unstable();
-    colours.dedup();
-    assert!(colours.len() > 3, "{} colours", colours.len());
+    // Walls, ceiling and floor: more than three colors.
+    let mut colors: Vec<&[u8]> = img.rgb.chunks(3).collect();
+    colors.sort_unstable();
+    colors.dedup();
+    assert!(colors.len() > 3, "{} colors", colors.len());
     assert!(run_err(&["compare", "maze"]).contains("column caster"));
 }
 
@@ -375,7 +375,7 @@ fn nan_or_infinite_scene_numbers_name_the_field() {
         );
     }
     let text = format!(
-        "{HEAD}    spheres: [(centre: (0.0, 0.0, 0.0), radius: NaN, color: (1, 2, 3))],\n)\n"
+        "{HEAD}    spheres: [(center: (0.0, 0.0, 0.0), radius: NaN, color: (1, 2, 3))],\n)\n"
     );
     let e = scene_error("nansphere", &text, &[]);
     assert!(
@@ -387,7 +387,7 @@ fn nan_or_infinite_scene_numbers_name_the_field() {
 #[test]
 fn a_stray_vertex_that_collapses_triangles_is_refused() {
     // A cube (side 2) with one vertex at 1e6: the step is 33.3, so every
-    // vertex but that one quantises to 0 and all 12 triangles collapse.
+    // vertex but that one quantizes to 0 and all 12 triangles collapse.
     let cube = "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1000000\n\
         f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
     let e = scene_error(
@@ -398,7 +398,7 @@ fn a_stray_vertex_that_collapses_triangles_is_refused() {
     assert!(e.contains("scene.ron:6:22: "), "{e}");
     assert!(e.contains("m.obj: "), "{e}");
     assert!(
-        e.contains("12 of 12 triangles collapse when quantised: the largest coordinate 1000000 forces a step of 33.3"),
+        e.contains("12 of 12 triangles collapse when quantized: the largest coordinate 1000000 forces a step of 33.3"),
         "{e}"
     );
     // A large triangle and a small one: only the small one collapses.
@@ -409,7 +409,7 @@ fn a_stray_vertex_that_collapses_triangles_is_refused() {
         &[("m.obj", two)],
     );
     assert!(
-        e.contains("1 of 2 triangles collapse when quantised: the largest coordinate 100000 forces a step of 3.33"),
+        e.contains("1 of 2 triangles collapse when quantized: the largest coordinate 100000 forces a step of 3.33"),
         "{e}"
     );
     // The same cube without the stray vertex loads.
@@ -501,7 +501,7 @@ fn messages_say_what_users_write() {
     assert!(!e.contains("1..=0"), "{e}");
     // RON's messages use the scene file's names, not Rust type names.
     for (from, to, name) in [
-        ("Flat((1, 2, 3))", "Flat((1, 2, 3)), colour: 1", "`object`"),
+        ("Flat((1, 2, 3))", "Flat((1, 2, 3)), color: 1", "`object`"),
         ("LookAt(", "LookAtt(", "enum `camera`"),
         (
             "Flat((1, 2, 3))",
@@ -518,7 +518,7 @@ fn messages_say_what_users_write() {
 #[test]
 fn unknown_fields_are_errors_everywhere() {
     let cube = "    objects: [(mesh: \"builtin:cube\", material: Flat((1, 2, 3)))],\n";
-    let spheres = "    spheres: [(centre: (0.0, 0.0, 0.0), radius: 1.0, color: (1, 2, 3))],\n";
+    let spheres = "    spheres: [(center: (0.0, 0.0, 0.0), radius: 1.0, color: (1, 2, 3))],\n";
     let base = format!("{HEAD}{cube}{spheres})\n");
     for (from, to, place) in [
         (
@@ -526,7 +526,7 @@ fn unknown_fields_are_errors_everywhere() {
             "direction: (0.0, 1.0, 0.0), ambinet: 0.2",
             "5:41",
         ),
-        ("radius: 1.0", "radius: 1.0, colour: 1", "7:54"),
+        ("radius: 1.0", "radius: 1.0, color: 1", "7:54"),
         (
             "up: (0.0, 1.0, 0.0)",
             "up: (0.0, 1.0, 0.0), roll: 1.0",

@@ -140,3 +140,20 @@ fn core_bunny_source_is_the_test_data_bunny() {
         "core/data/bunny.obj differs from tests/data/bunny.obj"
     );
 }
+
+/// A sphere's `center` is read under its American name and, for files
+/// written before the rename, as `centre`; both give the same value.
+#[test]
+fn sphere_center_reads_both_spellings() {
+    let d = temp_dir("center");
+    let p = d.join("scene.ron");
+    for key in ["center", "centre"] {
+        let text = format!(
+            "Scene(\n    name: \"s\",\n    camera: Angles(position: (0.0, 0.0, 5.0), angles: (0.0, 0.0, 0.0)),\n    projection: Perspective(fov_x_degrees: 60.0),\n    light: (direction: (0.0, 0.0, -1.0)),\n    objects: [],\n    spheres: [({key}: (1.5, -2.0, 0.25), radius: 0.5, color: (1, 2, 3))],\n)\n"
+        );
+        let loaded = parse(&text, &p).unwrap_or_else(|e| panic!("{key}: {e}"));
+        loaded.with_scene(|s| assert_eq!(s.spheres[0].center, [1.5, -2.0, 0.25], "{key}"));
+    }
+    let bad = "Scene(\n    name: \"s\",\n    camera: Angles(position: (0.0, 0.0, 5.0), angles: (0.0, 0.0, 0.0)),\n    projection: Perspective(fov_x_degrees: 60.0),\n    light: (direction: (0.0, 0.0, -1.0)),\n    objects: [],\n    spheres: [(middle: (1.5, -2.0, 0.25), radius: 0.5, color: (1, 2, 3))],\n)\n";
+    assert!(parse(bad, &p).is_err());
+}

@@ -65,7 +65,7 @@ impl RayMode {
 }
 
 /// A triangle for the grid: only `t` is used, so the hit carries no
-/// normal (shading looks the face colour up by index).
+/// normal (shading looks the face color up by index).
 #[derive(Clone, Copy, Debug)]
 struct Tri<S>(Triangle<S>);
 
@@ -88,7 +88,7 @@ struct Cluster<S> {
     tris: Vec<u32>,
 }
 
-/// Everything set up once: world-space bunny, per-triangle colours, the
+/// Everything set up once: world-space bunny, per-triangle colors, the
 /// ray camera, the clusters and the grid (storage leaked once, so the grid
 /// can borrow it for the program's life).
 #[derive(Debug)]
@@ -280,7 +280,7 @@ impl<S: Scalar + 'static> RayWorkload<S> {
 }
 
 /// Cells per axis for `n` triangles: λ·n cells split evenly over the
-/// bunny's box, whose sides are close enough to equal (the normalisation
+/// bunny's box, whose sides are close enough to equal (the normalization
 /// makes the largest 2, the others 1.55 and 1.94) that a cube grid is
 /// used.
 fn grid_res(n: usize) -> [u16; 3] {
@@ -302,7 +302,7 @@ fn grid<S: Scalar>(boxes: &[Aabb<S>]) -> Grid<'static, S> {
     Grid::build(boxes, res, cell_start, items).expect("grid storage sized")
 }
 
-/// Bins triangles by the centre of their box into a 4×4×4 lattice over
+/// Bins triangles by the center of their box into a 4×4×4 lattice over
 /// the union box; each non-empty bin is an object with the union of its
 /// triangles' boxes. Triangles keep ascending index order within a bin.
 fn clusters<S: Scalar>(boxes: &[Aabb<S>]) -> Vec<Cluster<S>> {

@@ -26,8 +26,8 @@ pub const WIDTH: u16 = 320;
 pub const HEIGHT: u16 = 240;
 /// Focal length in pixels.
 pub const FOCUS: f64 = 200.0;
-/// Bounding-box centre of the bunny, subtracted before scaling.
-pub const CENTRE: [f64; 3] = [-0.0048125, 4.8257995, 0.040403];
+/// Bounding-box center of the bunny, subtracted before scaling.
+pub const CENTER: [f64; 3] = [-0.0048125, 4.8257995, 0.040403];
 /// Divisor that makes the bunny's largest axis span exactly [−1, 1].
 pub const SCALE: f64 = 4.9536625;
 /// Distance of the model from the eye.
@@ -38,13 +38,13 @@ pub const BUNNY_OBJ: &str = include_str!("../data/bunny.obj");
 /// Which workload.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Shading {
-    /// W1: one colour per triangle from the face normal.
+    /// W1: one color per triangle from the face normal.
     Flat,
     /// W2: per-vertex intensities from vertex normals, interpolated.
     Gouraud,
 }
 
-/// The workload's grey for `v = floor(255·I)` as sightline's material
+/// The workload's gray for `v = floor(255·I)` as sightline's material
 /// model makes it: white scaled by `v/255` per channel, rounded down
 /// (WORKLOADS.md's `(v>>3, v>>2, v>>3)` differs by at most one step per
 /// channel and costs the same).
@@ -53,11 +53,11 @@ pub fn grey565(v: u8) -> Rgb565 {
     Rgb565::WHITE.scale(v)
 }
 
-/// The bunny, normalised, with face and vertex normals (computed in f64
+/// The bunny, normalized, with face and vertex normals (computed in f64
 /// and converted once).
 #[derive(Clone, Debug)]
 pub struct Model<S> {
-    /// Normalised positions.
+    /// Normalized positions.
     pub positions: Vec<Vec3<S>>,
     /// Triangles (CCW outward).
     pub triangles: Vec<[u16; 3]>,
@@ -77,7 +77,7 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
         a[0] * b[1] - a[1] * b[0],
     ]
 }
-fn normalise(a: [f64; 3]) -> [f64; 3] {
+fn normalize(a: [f64; 3]) -> [f64; 3] {
     let l = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
     if l > 0.0 {
         [a[0] / l, a[1] / l, a[2] / l]
@@ -87,14 +87,14 @@ fn normalise(a: [f64; 3]) -> [f64; 3] {
 }
 
 impl<S: Scalar> Model<S> {
-    /// Normalises `mesh` as W1/W2 define and computes the normals.
+    /// Normalizes `mesh` as W1/W2 define and computes the normals.
     #[must_use]
     pub fn from_mesh(mesh: &Mesh) -> Self {
         let p: Vec<[f64; 3]> = mesh
             .positions
             .iter()
             .map(|&q| {
-                let d = sub(q, CENTRE);
+                let d = sub(q, CENTER);
                 [d[0] / SCALE, d[1] / SCALE, d[2] / SCALE]
             })
             .collect();
@@ -104,7 +104,7 @@ impl<S: Scalar> Model<S> {
             let [a, b, c] = t.map(|i| p[i as usize]);
             // |cross| is twice the area: summing it weights by area.
             let n = cross(sub(b, a), sub(c, a));
-            face_normals.push(v3(normalise(n)));
+            face_normals.push(v3(normalize(n)));
             for &i in t {
                 let s = &mut vn[i as usize];
                 for k in 0..3 {
@@ -120,7 +120,7 @@ impl<S: Scalar> Model<S> {
                 .map(|t| t.map(|k| u16::try_from(k).expect("fewer than 65536 vertices")))
                 .collect(),
             face_normals,
-            vertex_normals: vn.into_iter().map(|n| v3(normalise(n))).collect(),
+            vertex_normals: vn.into_iter().map(|n| v3(normalize(n))).collect(),
         }
     }
 
@@ -150,7 +150,7 @@ pub struct Workload<'m, S> {
     scratch: Vec<MeshVertex<1>>,
 }
 
-/// The colour and depth buffers of one 320×240 frame.
+/// The color and depth buffers of one 320×240 frame.
 #[derive(Clone, Debug)]
 pub struct Frame {
     /// RGB565 pixels, row-major.
@@ -220,7 +220,7 @@ impl<'m, S: Scalar> Workload<'m, S> {
         )
     }
 
-    /// Renders frame `k` of `n` into `frame`, clearing it first (colour by
+    /// Renders frame `k` of `n` into `frame`, clearing it first (color by
     /// the draw, depth here). Returns the number of triangles drawn (not
     /// culled, not empty).
     pub fn render(&mut self, k: u32, n: u32, frame: &mut Frame) -> u32 {

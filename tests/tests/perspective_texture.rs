@@ -10,9 +10,9 @@
 //! says which texel the shader read.
 //!
 //! Reference: the exact perspective mapping of the triangle *as the
-//! rasteriser sees it*: its vertices rounded to 28.4 sub-pixel positions,
+//! rasterizer sees it*: its vertices rounded to 28.4 sub-pixel positions,
 //! `u/z`, `v/z` and `1/z` interpolated linearly in screen space at the
-//! pixel centre and divided, all in f64. (Measuring against the unrounded
+//! pixel center and divided, all in f64. (Measuring against the unrounded
 //! triangle would charge the 28.4 vertex rounding, which moves coverage
 //! too, to the shader.) A pixel's error is the distance, in texels, from
 //! the reference (u, v) to the texel the shader read (0 when the
@@ -77,7 +77,7 @@ where
     buf
 }
 
-/// The reference (u, v) and depth z at every pixel centre, over the
+/// The reference (u, v) and depth z at every pixel center, over the
 /// 28.4-rounded screen vertices.
 fn reference() -> impl Fn(u16, u16) -> (f64, f64, f64) {
     let proj = Projection::perspective(FOCUS, W, H);
@@ -259,7 +259,7 @@ fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 #[test]
 fn reference_is_close_to_the_unrounded_mapping() {
     // Guards the reference itself: the mapping before any rounding is the
-    // pixel-centre ray's hit on the triangle, with the hit's barycentric
+    // pixel-center ray's hit on the triangle, with the hit's barycentric
     // weights applied to the texel coordinates. Rounding the vertices to
     // 1/16 px moves the reference by a fraction of a texel where the
     // triangle is near (z ≤ 15: ≤ ~3 texels per pixel); a wrong plane fit

@@ -37,18 +37,18 @@ fn three_searches_identical_and_coverage_matches_raster() {
     };
     let raster_px = frame.color.clone();
     let raster_cov = frame.coverage().pixels;
-    let (mut only_ray, mut only_raster, mut colour) = (0, 0, 0);
+    let (mut only_ray, mut only_raster, mut color) = (0, 0, 0);
     for y in 0..h {
         for x in 0..w {
             let (r, s) = (covered(&brute, x, y), covered(&raster_px, x, y));
             if r == s {
                 if r && brute[(y * w + x) as usize] != raster_px[(y * w + x) as usize] {
-                    colour += 1;
+                    color += 1;
                 }
                 continue;
             }
             // A disagreement must sit on the raster silhouette: one of the
-            // 4-neighbours has the state the ray path gave this pixel.
+            // 4-neighbors has the state the ray path gave this pixel.
             let on_silhouette = [(1, 0), (-1, 0), (0, 1), (0, -1)]
                 .iter()
                 .any(|(dx, dy)| covered(&raster_px, x + dx, y + dy) == r);
@@ -64,7 +64,7 @@ fn three_searches_identical_and_coverage_matches_raster() {
         }
     }
     // Silhouette pixels of the raster image: covered, with an uncovered
-    // 4-neighbour.
+    // 4-neighbor.
     let mut silhouette = 0;
     for y in 0..h {
         for x in 0..w {
@@ -79,11 +79,11 @@ fn three_searches_identical_and_coverage_matches_raster() {
     }
     println!(
         "ray coverage {brute_hits}, raster {raster_cov}: {only_ray} only ray, {only_raster} only raster \
-         ({silhouette} silhouette pixels), {colour} covered by both with another colour"
+         ({silhouette} silhouette pixels), {color} covered by both with another color"
     );
     assert_eq!(brute_hits - only_ray + only_raster, raster_cov);
     // The raster path snaps vertices to 1/16 px, so an edge moves by at
-    // most 1/32 px; a silhouette pixel changes only when its centre lies
+    // most 1/32 px; a silhouette pixel changes only when its center lies
     // in that band, about 1/16 of the silhouette pixels for edges at
     // random angles. Allow twice that.
     assert!(

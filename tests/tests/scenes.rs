@@ -3,12 +3,12 @@
 //!
 //! # Agreement metric
 //!
-//! Both paths sample each pixel at its centre (i + ½, j + ½) and share
-//! only the material model (colour ramp, texel fetch; see
+//! Both paths sample each pixel at its center (i + ½, j + ½) and share
+//! only the material model (color ramp, texel fetch; see
 //! `sightline::scene`): the ray path shades at the hit, independently of
 //! the raster path's interpolation. A pixel is *equal* when the two
-//! Rgb565 values are; it is *within one step* when the raster colour is
-//! one grey level (lit surfaces) or one texel (textures) from what the ray
+//! Rgb565 values are; it is *within one step* when the raster color is
+//! one gray level (lit surfaces) or one texel (textures) from what the ray
 //! saw ([`within_one_step`]). The thresholds sit just under the measured
 //! figures ([`AGREEMENT`]), so a regression in either path (a half-pixel
 //! shift, a wrong normal, swapped weights, a fill-rule change) fails them.
@@ -37,7 +37,7 @@ use std::path::PathBuf;
 
 /// (scene, scalar, minimum % equal, minimum % within) at 160×120; `None`
 /// where "within" measures the same as "equal" (cube, spheres: flat
-/// surfaces whose colours match exactly wherever the same surface is
+/// surfaces whose colors match exactly wherever the same surface is
 /// hit), so it could never fail alone.
 ///
 /// Measured (this test's table, f32 / I16F16): cube 99.96 / 99.97 equal;
@@ -47,22 +47,22 @@ use std::path::PathBuf;
 /// tenth.
 ///
 /// The systematic differences:
-/// - Gouraud (bunny, ~1.3 % of pixels one grey level apart): the raster
+/// - Gouraud (bunny, ~1.3 % of pixels one gray level apart): the raster
 ///   path interpolates intensity linearly in screen space, the ray path
 ///   with the hit's barycentric weights, linear in object space
 ///   (perspective-correct); on a triangle whose vertices lie at different
 ///   depths the two differ by a fraction of a level, which crosses a
-///   quantisation step on some pixels.
+///   quantization step on some pixels.
 /// - Texture (corridor, ~0.8 % f32, ~1.9 % I16F16 one texel apart): the
 ///   raster path fits its 16.16 `u·q`, `v·q`, `q` planes to near-clipped
 ///   vertices rounded to 1/16 px and divides per pixel; the ray path
 ///   combines the unclipped triangle's texture coordinates with the
 ///   weights at the hit. Where a texel coordinate lies within that
 ///   rounding of a texel boundary (whole columns on the walls, where it is
-///   constant down the column) they read neighbouring texels. I16F16
+///   constant down the column) they read neighboring texels. I16F16
 ///   weights have 2⁻¹⁶ resolution, times coordinates of up to some
 ///   hundred texels: more pixels near a boundary.
-/// - Edges and silhouettes (the rest, under 0.1 %): a pixel centre within
+/// - Edges and silhouettes (the rest, under 0.1 %): a pixel center within
 ///   rounding of an edge is covered by different triangles (the raster
 ///   path snaps vertices to 1/16 px, the ray path does not).
 /// - Spheres are drawn by the ray path only.
@@ -94,15 +94,15 @@ impl Agreement {
     }
 }
 
-/// Whether the raster colour `raster` is *within one step* of what the
+/// Whether the raster color `raster` is *within one step* of what the
 /// ray saw, `sample`:
 /// - a lit (flat or Gouraud) surface at intensity step `q`: `raster` is
-///   the object's base colour at step `q − 1`, `q` or `q + 1` (one grey
-///   level of the colour ramp);
-/// - a textured surface showing texel `(u, v)`: `raster` is the colour of
+///   the object's base color at step `q − 1`, `q` or `q + 1` (one gray
+///   level of the color ramp);
+/// - a textured surface showing texel `(u, v)`: `raster` is the color of
 ///   a texel `(u + du, v + dv)` with `|du|, |dv| ≤ 1` (one texel, the 3×3
-///   neighbourhood; a neighbour of the same colour counts, as it must
-///   when only colours are compared);
+///   neighbourhood; a neighbor of the same color counts, as it must
+///   when only colors are compared);
 /// - the background or a sphere: never (only equal counts).
 fn within_one_step(scene: &Scene<'_>, sample: RaySample, raster: Color) -> bool {
     match sample {

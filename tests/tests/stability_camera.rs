@@ -1,7 +1,7 @@
 //! Stability suite, part 2: recovering a pinhole camera from pixel and world
 //! coordinates (the direct linear transform, solved through the normal
 //! equations with sightline's Gaussian elimination), with and without
-//! normalising the data first (Hartley, "In defense of the eight-point
+//! normalizing the data first (Hartley, "In defense of the eight-point
 //! algorithm", 1997: centroid at 0, mean distance √2 for pixels and √3 for
 //! world points).
 //!
@@ -57,7 +57,7 @@ fn project(p: &[[f64; 4]; 3], x: &[f64; 3]) -> [f64; 2] {
 
 /// Similarity that moves the centroid to 0 and the mean distance to
 /// `target`: returns (centroid, scale).
-fn normaliser<const D: usize>(pts: &[[f64; D]], target: f64) -> ([f64; D], f64) {
+fn normalizer<const D: usize>(pts: &[[f64; D]], target: f64) -> ([f64; D], f64) {
     let n = pts.len() as f64;
     let c: [f64; D] = core::array::from_fn(|k| pts.iter().map(|p| p[k]).sum::<f64>() / n);
     let mean = pts
@@ -74,15 +74,15 @@ fn normaliser<const D: usize>(pts: &[[f64; D]], target: f64) -> ([f64; D], f64) 
 fn dlt<T: Scalar>(
     world: &[[f64; 3]],
     pixels: &[[f64; 2]],
-    normalise: bool,
+    normalize: bool,
 ) -> Result<[[f64; 4]; 3], SolveError> {
-    let (wc, ws) = if normalise {
-        normaliser(world, 3f64.sqrt())
+    let (wc, ws) = if normalize {
+        normalizer(world, 3f64.sqrt())
     } else {
         ([0.0; 3], 1.0)
     };
-    let (pc, ps) = if normalise {
-        normaliser(pixels, 2f64.sqrt())
+    let (pc, ps) = if normalize {
+        normalizer(pixels, 2f64.sqrt())
     } else {
         ([0.0; 2], 1.0)
     };
@@ -159,23 +159,23 @@ fn reprojection(p: &[[f64; 4]; 3], world: &[[f64; 3]], pixels: &[[f64; 2]]) -> f
 fn camera_recovery_needs_normalised_data_in_f32() {
     let (world, pixels, _) = scene();
     let mut report = Vec::new();
-    for (name, normalise) in [("raw", false), ("normalised", true)] {
-        let r64 = dlt::<f64>(&world, &pixels, normalise).map(|p| reprojection(&p, &world, &pixels));
-        let r32 = dlt::<f32>(&world, &pixels, normalise).map(|p| reprojection(&p, &world, &pixels));
+    for (name, normalize) in [("raw", false), ("normalized", true)] {
+        let r64 = dlt::<f64>(&world, &pixels, normalize).map(|p| reprojection(&p, &world, &pixels));
+        let r32 = dlt::<f32>(&world, &pixels, normalize).map(|p| reprojection(&p, &world, &pixels));
         println!("DLT {name}: f64 max reprojection error {r64:?} px; f32 {r32:?} px");
         report.push((r64, r32));
     }
     let (raw, norm) = (&report[0], &report[1]);
-    // f64 copes without normalisation (measured 1.7e-12 px), but
-    // normalising gains an order of magnitude (1.1e-13 px). Bounds are 100×
+    // f64 copes without normalization (measured 1.7e-12 px), but
+    // normalizing gains an order of magnitude (1.1e-13 px). Bounds are 100×
     // the measurements: loose enough for other libm/CPU rounding, tight
-    // enough to catch a lost normalisation or a broken solver.
+    // enough to catch a lost normalization or a broken solver.
     let raw64 = raw.0.expect("raw f64 solves");
-    let norm64 = norm.0.expect("normalised f64 solves");
+    let norm64 = norm.0.expect("normalized f64 solves");
     assert!(raw64 < 2e-10, "raw f64 {raw64}");
-    assert!(norm64 < 2e-11, "normalised f64 {norm64}");
+    assert!(norm64 < 2e-11, "normalized f64 {norm64}");
     assert!(norm64 < raw64);
-    // f32 without normalisation: the normal equations' condition number
+    // f32 without normalization: the normal equations' condition number
     // (≈ κ(A)², with entries from 1 to 10⁶ of pixel × world products) is
     // far beyond 1/ε, and the solver says so instead of returning garbage.
     assert!(
@@ -183,8 +183,8 @@ fn camera_recovery_needs_normalised_data_in_f32() {
         "raw f32: {:?}",
         raw.1
     );
-    // Normalised, f32 recovers the camera to a small fraction of a pixel
+    // Normalized, f32 recovers the camera to a small fraction of a pixel
     // (measured 3.8e-5 px).
-    let norm32 = norm.1.expect("normalised f32 solves");
-    assert!(norm32 < 4e-3, "normalised f32 {norm32}");
+    let norm32 = norm.1.expect("normalized f32 solves");
+    assert!(norm32 < 4e-3, "normalized f32 {norm32}");
 }

@@ -6,10 +6,10 @@
 //!
 //! Part 1 (`stability_solver.rs`) has the stiff linear systems, the
 //! fixed-point overflow systems and the 1000-step rotation drift with and
-//! without re-orthonormalisation; part 2 (`stability_camera.rs`) the camera
-//! recovery with and without normalised data.
+//! without re-orthonormalization; part 2 (`stability_camera.rs`) the camera
+//! recovery with and without normalized data.
 //!
-//! Coverage oracle used below: a pixel is *unambiguous* when its centre
+//! Coverage oracle used below: a pixel is *unambiguous* when its center
 //! and four points 0.15 px around it are all inside, or all outside, the
 //! polygon as cast in f64 (ray from the eye through the point, hit on the
 //! polygon's plane at z ≥ near). Unambiguous pixels must be drawn exactly
@@ -515,7 +515,7 @@ fn rays_through_vertices_and_along_edges() {
             );
             assert_eq!(claims, 1, "{} ({x}, {y})", S::NAME);
         }
-        // Along the edge from the centre to ring[0], inside the plane.
+        // Along the edge from the center to ring[0], inside the plane.
         let along = Ray::new(v::<S>(-1.0, 0.0, z), v::<S>(1.0, 0.0, 0.0)).unwrap();
         let hits = tris
             .iter()
@@ -537,7 +537,7 @@ fn rays_tangent_to_a_sphere() {
     fn case<S: Scalar>() {
         let s = Sphere::new(v::<S>(0.0, 2.0, -10.0), S::from_f64(2.0)).unwrap();
         for off in [0.0, 1e-3] {
-            // Tangent at (0, off·2, −10): passes at distance 2 − 2·off from the centre.
+            // Tangent at (0, off·2, −10): passes at distance 2 − 2·off from the center.
             let y = 2.0 * off;
             let ray = Ray::new(v::<S>(0.0, y, 0.0), v::<S>(0.0, 0.0, -1.0)).unwrap();
             let roots = s.roots(&ray);
@@ -717,7 +717,7 @@ fn polygons_lying_in_a_clip_plane() {
 /// A 256×256-texel quad facing the camera, drawn ever smaller (far away):
 /// at 32 texels per pixel and at 128. Expected: every drawn pixel samples
 /// a texel within one pixel footprint (texels per pixel + 1) of the exact
-/// texel under its centre, for exact perspective and affine mapping;
+/// texel under its center, for exact perspective and affine mapping;
 /// nothing panics, and texture coordinates of ±10⁶ texels (beyond the
 /// 16.16 varying range, which saturates) still sample inside the texture.
 #[test]
@@ -782,7 +782,7 @@ fn textures_at_extreme_minification() {
                     "sample outside the texture"
                 );
                 let (x, y) = ((k % 64) as f64 + 0.5, (k / 64) as f64 + 0.5);
-                // Exact (u, v) at the pixel centre: the quad faces the camera.
+                // Exact (u, v) at the pixel center: the quad faces the camera.
                 let px = (x - 32.0) * z / FOCUS;
                 let py = (y - 32.0) * z / FOCUS;
                 let u = (px + side / 2.0) / side * 256.0 * uv_scale;

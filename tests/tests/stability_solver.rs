@@ -174,7 +174,7 @@ fn fixed_point_products_overflow() {
 /// 1000 incremental rotations by 2π/1000 about a tilted axis, accumulated
 /// by matrix products, compared with the exact total rotation (a full
 /// turn, i.e. the identity). Reports the drift from orthonormality and the
-/// error, with and without re-orthonormalising every step.
+/// error, with and without re-orthonormalizing every step.
 #[test]
 fn rotation_drift_over_1000_steps() {
     fn run<T: Scalar>(reorthonormalize: bool) -> (f64, f64) {
@@ -217,14 +217,14 @@ fn rotation_drift_over_1000_steps() {
         ("I16F16", run::<I16F16>(false), run::<I16F16>(true)),
     ] {
         println!(
-            "{name}: 1000 steps: error {:.2e}, |MMᵀ−I| {:.2e}; re-orthonormalised: error {:.2e}, |MMᵀ−I| {:.2e}",
+            "{name}: 1000 steps: error {:.2e}, |MMᵀ−I| {:.2e}; re-orthonormalized: error {:.2e}, |MMᵀ−I| {:.2e}",
             plain.0, plain.1, fixed.0, fixed.1
         );
         rows.push((name, plain, fixed));
     }
     // Expected outcomes (measured values are printed above). Floats: each
     // 3×3 product perturbs an entry by at most 3 roundings, so after k = 1000
-    // steps the drift and error are bounded by 3kε; re-orthonormalising
+    // steps the drift and error are bounded by 3kε; re-orthonormalizing
     // holds MMᵀ to a few ε.
     for (name, plain, fixed) in &rows[..2] {
         let e = if *name == "f64" {
@@ -238,17 +238,17 @@ fn rotation_drift_over_1000_steps() {
         );
         assert!(fixed.1 < 10.0 * e, "{name}: {fixed:?}");
     }
-    // I16F16 without re-orthonormalisation drifts measurably (each product
+    // I16F16 without re-orthonormalization drifts measurably (each product
     // rounds every entry to 2⁻¹⁶); with it, orthonormality is held to a few
     // steps, which is what a long-running animation on an MCU needs.
     let (_, plain, fixed) = rows[2];
     assert!(
         fixed.1 < 16.0 / 65536.0,
-        "I16F16 re-orthonormalised drift {}",
+        "I16F16 re-orthonormalized drift {}",
         fixed.1
     );
     assert!(
         fixed.1 < plain.1,
-        "re-orthonormalising must help: {plain:?} vs {fixed:?}"
+        "re-orthonormalizing must help: {plain:?} vs {fixed:?}"
     );
 }

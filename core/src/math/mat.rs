@@ -173,8 +173,8 @@ impl<S: Scalar> Mat3<S> {
         }
     }
     /// The nearest-in-spirit rotation to a drifted one: Gram–Schmidt on the
-    /// rows (row 0 normalised, row 1 made orthogonal to it and normalised,
-    /// row 2 = row 0 × row 1). Use it to re-orthonormalise a rotation that
+    /// rows (row 0 normalized, row 1 made orthogonal to it and normalized,
+    /// row 2 = row 0 × row 1). Use it to re-orthonormalize a rotation that
     /// accumulates many small incremental products.
     ///
     /// Returns `None` when the first two rows are zero, parallel or not

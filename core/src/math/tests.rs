@@ -259,7 +259,7 @@ macro_rules! math_suite {
     };
 }
 
-// Normalisation is scaled by the largest component, so it holds from the
+// Normalization is scaled by the largest component, so it holds from the
 // smallest normal magnitudes to the largest finite ones.
 math_suite!(
     f64_suite,

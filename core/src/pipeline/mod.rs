@@ -194,7 +194,7 @@ impl<S: Scalar> Pipeline<S> {
         far: S,
         guard: S,
     ) -> Result<Self, PipelineError> {
-        let (cx, cy) = (projection.centre.x, projection.centre.y);
+        let (cx, cy) = (projection.center.x, projection.center.y);
         let f = match projection.kind {
             ProjectionKind::Parallel { scale } => scale,
             ProjectionKind::Perspective { focus } => focus,
@@ -211,7 +211,7 @@ impl<S: Scalar> Pipeline<S> {
         let nf = PipelineError::NonFinite;
         let w = S::from_i32(width as i32);
         let h = S::from_i32(height as i32);
-        // Screen bounds with the guard band, relative to the centre, in
+        // Screen bounds with the guard band, relative to the center, in
         // units of f: x_s ≥ −g ⇔ x/z + (cx + g)/f ≥ 0 (perspective) or
         // x + (cx + g)/s ≥ 0 (parallel).
         let left = cx

@@ -153,7 +153,7 @@ fn square_pattern<S: Scalar>() {
     let mut t = MockTarget::new(12, 8);
     p.draw_polygon(&mut t, &mut NoDepth, &Gouraud::new(&digits()), &sq)
         .unwrap();
-    // Intensity at centre x_s = c is 255·(c − 2)/8, shown as i·10/256.
+    // Intensity at center x_s = c is 255·(c − 2)/8, shown as i·10/256.
     t.assert_pattern(&[
         "..01345689..", //
         "..01345689..", //
@@ -169,7 +169,7 @@ fn square_pattern<S: Scalar>() {
 fn near_clipped_floor_pattern<S: Scalar>() {
     // A floor y = 1 from z = 0 (behind the near plane) to z = 4: clipped at
     // z = 1 (y_s = 12, below the screen), far edge at y_s = 6, x_s ∈ [4, 8].
-    // Row 6's centre line meets the sides at 3.5 and 8.5, row 7's at 2.5
+    // Row 6's center line meets the sides at 3.5 and 8.5, row 7's at 2.5
     // and 9.5.
     let p = pipe::<S>();
     let floor = [
@@ -480,7 +480,7 @@ where
 }
 
 /// Pixels whose texel differs from the exact one found by casting a ray
-/// in f64 through the pixel centre, ignoring pixels within `margin`
+/// in f64 through the pixel center, ignoring pixels within `margin`
 /// texels of a texel boundary: (mismatches, drawn).
 #[cfg(feature = "perspective")]
 fn floor_mismatches(buf: &[u16; 32 * 24], margin: f64) -> (usize, usize) {
@@ -698,7 +698,7 @@ fn covered<const K: usize>(poly: &[ScreenVertex<K>]) -> Vec<u32> {
 }
 
 /// The smallest distance in pixels from (px, py) to the line of an edge
-/// of the triangle `p` as `pipe` projects it (focus 8, centre (6, 4)),
+/// of the triangle `p` as `pipe` projects it (focus 8, center (6, 4)),
 /// in f64; infinite if a vertex is not in front of the eye (its edges do
 /// not project to lines through both ends).
 fn edge_distance(p: &[(f64, f64, f64, f64); 3], px: f64, py: f64) -> f64 {
@@ -747,7 +747,7 @@ fn mesh_matches_project_polygon<S: Scalar>(
                             // The clipper cut at a side plane where the mesh
                             // path kept the vertex (or the reverse): the
                             // clip point is rounded onto the same edge, so
-                            // only a pixel whose centre lies within rounding
+                            // only a pixel whose center lies within rounding
                             // of an edge of the triangle may change. Edges
                             // in f64 from the exact projection.
                             let (px, py) = ((k % 12) as f64 + 0.5, (k / 12) as f64 + 0.5);

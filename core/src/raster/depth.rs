@@ -137,7 +137,7 @@ mod private {
 #[cfg(feature = "depth")]
 #[derive(Debug)]
 pub struct DepthBuffer<'a, K: StoredDepth = DepthKey> {
-    // A band of keys: one shape check and one clipping rule for colour
+    // A band of keys: one shape check and one clipping rule for color
     // and depth.
     keys: Band<'a, K>,
 }
@@ -162,7 +162,7 @@ impl<'a, K: StoredDepth> DepthBuffer<'a, K> {
     /// Sets every key to the farthest value ([`StoredDepth::FAR`]: 65535
     /// for `u16`).
     pub fn clear(&mut self) {
-        // `slice::fill` rather than the band's unrolled colour fill: an
+        // `slice::fill` rather than the band's unrolled color fill: an
         // all-ones key fill becomes `memset`.
         let l = self.keys.layout;
         for row in 0..l.height as i32 {

@@ -1,8 +1,8 @@
 //! Exact integer edge steppers for the scan converter.
 //!
 //! Coordinates are 28.4 fixed point (see [`SUBPIXEL_BITS`](super::SUBPIXEL_BITS)).
-//! For scanline j the pixel-centre line is `y_c = 16j + 8`, and the first
-//! pixel whose centre lies at or right of the edge is
+//! For scanline j the pixel-center line is `y_c = 16j + 8`, and the first
+//! pixel whose center lies at or right of the edge is
 //! `i = ceil((x(y_c) − 8) / 16)`. Writing `x(y_c)` as the exact rational
 //! `x₀ + (y_c − y₀)·dx/dy`, that is `ceil(N / D)` with
 //! `N = (x₀ − 8)·dy + (y_c − y₀)·dx` and `D = 16·dy`. Stepping one row adds
@@ -21,7 +21,7 @@ pub(super) fn ceil_div(n: i64, d: i64) -> (i64, i64) {
     if r > 0 { (q + 1, d - r) } else { (q, -r) }
 }
 
-/// The first pixel row (or column) whose centre is at or after the 28.4
+/// The first pixel row (or column) whose center is at or after the 28.4
 /// coordinate `v`: `ceil((v − 8) / 16)`.
 #[inline]
 pub(super) fn first_center(v: i32) -> i32 {
@@ -53,7 +53,7 @@ impl EdgeStepper {
 
     /// Sets up the edge (x₀, y₀)→(x₁, y₁) (28.4) on scanline `row`.
     ///
-    /// Magnitudes: with all coordinates within ±2^28 and `row`'s centre
+    /// Magnitudes: with all coordinates within ±2^28 and `row`'s center
     /// within the polygon's extent, `|N| < 2^59` and `D ≤ 2^34`, so i64
     /// holds every intermediate.
     ///
@@ -102,7 +102,7 @@ impl EdgeStepper {
 /// coordinates all lie within ±[`SMALL_COORD_LIMIT`].
 ///
 /// Bound: with `|x|, |y| ≤ 2^14`, `0 < dy ≤ 2^15`, `|dx| ≤ 2^15` and the
-/// row's centre within the edge's extent (`0 ≤ y_c − y₀ ≤ dy + 8`),
+/// row's center within the edge's extent (`0 ≤ y_c − y₀ ≤ dy + 8`),
 /// `|N| ≤ (2^14 + 8)·2^15 + (2^15 + 8)·2^15 < 1.62·10^9 < 2^31`, and
 /// `D = 16·dy ≤ 2^19`: every intermediate fits in `i32`, so the set-up is
 /// two 32-bit divisions (no 64-bit library calls on ARMv6-M) and the walk
@@ -133,7 +133,7 @@ fn ceil_div32(n: i32, d: i32) -> (i32, i32) {
 
 impl EdgeStepper32 {
     /// As [`EdgeStepper::new`]; every coordinate within
-    /// ±[`SMALL_COORD_LIMIT`] and `row`'s centre within the edge's rows.
+    /// ±[`SMALL_COORD_LIMIT`] and `row`'s center within the edge's rows.
     pub(super) fn new(x0: i32, y0: i32, x1: i32, y1: i32, row: i32) -> Self {
         let dy = y1 - y0;
         if dy <= 0 {

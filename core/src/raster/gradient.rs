@@ -5,7 +5,7 @@
 //! `a(X, Y) = a₀ + g_x·(X − x₀) + g_y·(Y − y₀)` over 28.4 screen
 //! coordinates, with `g_x = (Δa₁·e₂y − Δa₂·e₁y) / A`,
 //! `g_y = (Δa₂·e₁x − Δa₁·e₂x) / A` and `A = e₁ × e₂` (twice the signed
-//! area). Evaluating the plane at each span's first pixel centre, instead
+//! area). Evaluating the plane at each span's first pixel center, instead
 //! of stepping values down the edges, keeps every span independent of the
 //! rows before it (bands render bit-identically) and costs one
 //! multiply-add per quantity per span.

@@ -2,9 +2,9 @@
 //!
 //! Input is a convex polygon (any number of vertices, either winding) in
 //! screen space with 28.4 fixed-point coordinates ([`SUBPIXEL_BITS`] = 4),
-//! pixel (i, j) having its centre at (i + ½, j + ½). Coverage follows the
+//! pixel (i, j) having its center at (i + ½, j + ½). Coverage follows the
 //! **top-left rule** of the D3D rasterization rules: a pixel is drawn when
-//! its centre is strictly inside, or on a left edge, or on a horizontal top
+//! its center is strictly inside, or on a left edge, or on a horizontal top
 //! edge. So polygons that share edges in a mesh cover every pixel exactly
 //! once: no gaps, no double writes.
 //!
@@ -25,7 +25,7 @@
 //!
 //! | piece | choices (all compile-time) |
 //! |---|---|
-//! | shader ([`SpanShader`]) | [`Flat`], [`Gouraud`] (colour ramp), [`AffineTexture`], [`LitAffineTexture`] (texture × intensity), [`PerspectiveTexture`] (exact, or runs of N) |
+//! | shader ([`SpanShader`]) | [`Flat`], [`Gouraud`] (color ramp), [`AffineTexture`], [`LitAffineTexture`] (texture × intensity), [`PerspectiveTexture`] (exact, or runs of N) |
 //! | texels | a [`Texture`](crate::texture::Texture) (the crate's one texel store), wrapped by a [`Wrap`](crate::texture::Wrap) type: [`Repeat`](crate::texture::Repeat), [`RepeatPow2`](crate::texture::RepeatPow2), [`Clamp`](crate::texture::Clamp) |
 //! | depth ([`DepthTest`]) | [`NoDepth`] (free), [`DepthBuffer`] (u16 keys, or u32 24.8 depths; less-than) |
 //! | target | anything implementing [`Target`] |
@@ -117,7 +117,7 @@ pub enum FillOutcome {
     /// Spans were emitted (some may still have failed the depth test).
     Drawn,
     /// Nothing to draw: fewer than three vertices, zero area, or no pixel
-    /// centre inside the clip rectangle.
+    /// center inside the clip rectangle.
     Empty,
     /// A vertex lies outside ±[`COORD_LIMIT`]; nothing was drawn.
     Rejected,
@@ -178,7 +178,7 @@ impl<'v, const K: usize> Chain<'v, K> {
     }
 }
 
-/// Scan-converts a convex polygon into `target`, colouring with `shader`
+/// Scan-converts a convex polygon into `target`, coloring with `shader`
 /// and testing against `depth`.
 ///
 /// See the [module docs](self) for the fill rule, limits and robustness.
@@ -294,7 +294,7 @@ where
     let (lo, hi) = Sh::RANGE;
 
     // One span: `[min(xa, xb), max(xa, xb))` of row `y`, scissored. The
-    // same ceil formula serves left and right edges (first centre at or
+    // same ceil formula serves left and right edges (first center at or
     // right of the edge), so for convex input min/max is exactly
     // [left, right) whatever the winding; for garbage it still yields one
     // bounded span. Evaluates to whether anything was inside the clip. A

@@ -8,7 +8,7 @@ use super::PERSPECTIVE_Q_BITS;
 
 /// (u, v) in 16.16 from (u·q, v·q) in 16.16 and q = near/z in 8.24, with
 /// one reciprocal instead of two divisions: `r = ⌈2^62 / q'⌉` for
-/// `q' = q·2^s` normalised to `[2^30, 2^31)`, then `|u·q|·r >> (38 − s)`
+/// `q' = q·2^s` normalized to `[2^30, 2^31)`, then `|u·q|·r >> (38 − s)`
 /// with the sign of `u·q` (truncation toward zero, as a division). `r`
 /// rounds up, so the magnitude is never below the exact quotient's and
 /// exceeds it by less than 2^−31 of it: by less than one unit of 2^−16
@@ -38,7 +38,7 @@ pub(crate) fn divide(v: &[i32; 3]) -> (i64, i64) {
 }
 
 /// Seeds for [`recip62`]: `⌊2^24 / (257 + i)⌋`, the reciprocal of the
-/// top of the interval `[256 + i, 257 + i)·2^22` that a normalised
+/// top of the interval `[256 + i, 257 + i)·2^22` that a normalized
 /// divisor with those leading bits lies in, shifted to 16 bits. Never
 /// above the true reciprocal, within 1/256 of it.
 const RECIP_SEED: [u16; 256] = {

@@ -1,4 +1,4 @@
-//! Span shaders: what colour each pixel of a span gets.
+//! Span shaders: what color each pixel of a span gets.
 //!
 //! A shader sees only the polygon's interpolated *varyings*: `K` values in
 //! 16.16 fixed point, set up per span and stepped by one integer add per
@@ -10,9 +10,9 @@ use embedded_graphics::pixelcolor::{Gray8, GrayColor, Rgb565, RgbColor};
 /// Fractional bits of the varyings handed to shaders (16.16).
 pub const VARYING_FRAC_BITS: u32 = 16;
 
-/// Colours pixels from `K` interpolated varyings.
+/// Colors pixels from `K` interpolated varyings.
 pub trait SpanShader<const K: usize> {
-    /// The colour produced.
+    /// The color produced.
     type Color: Copy;
 
     /// The range every varying is kept in: the span set-up clamps values
@@ -28,14 +28,14 @@ pub trait SpanShader<const K: usize> {
     /// `false`.
     const PER_PIXEL: bool = true;
 
-    /// `Some(colour)` if every pixel gets the same colour; the scan
+    /// `Some(color)` if every pixel gets the same color; the scan
     /// converter then uses [`Target::fill_solid`](crate::target::Target::fill_solid)
     /// and skips the varyings.
     fn solid(&self) -> Option<Self::Color> {
         None
     }
 
-    /// The colour for one pixel with varyings `v` (16.16, within
+    /// The color for one pixel with varyings `v` (16.16, within
     /// [`Self::RANGE`]).
     fn color(&self, v: &[i32; K]) -> Self::Color;
 
@@ -65,7 +65,7 @@ pub trait SpanShader<const K: usize> {
     }
 }
 
-/// One colour for the whole polygon. Ignores any varyings, so it works
+/// One color for the whole polygon. Ignores any varyings, so it works
 /// with every vertex format, and the scan converter skips their set-up.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Flat<C>(pub C);
@@ -84,7 +84,7 @@ impl<C: Copy, const K: usize> SpanShader<K> for Flat<C> {
 }
 
 /// Gouraud shading: the first varying is the intensity 0..=255 (16.16),
-/// looked up in a 256-entry colour ramp; further varyings are ignored.
+/// looked up in a 256-entry color ramp; further varyings are ignored.
 /// Per pixel: one add, one shift, one load. With `K = 0` every pixel gets
 /// `ramp[0]`.
 ///
@@ -126,7 +126,7 @@ impl<C: Copy, const K: usize> SpanShader<K> for Gouraud<'_, C> {
     }
 }
 
-/// Colours that can be scaled by an intensity, to build Gouraud ramps.
+/// Colors that can be scaled by an intensity, to build Gouraud ramps.
 pub trait Shade: Copy {
     /// `self` scaled by `i / 255` per channel, rounded down.
     #[must_use]

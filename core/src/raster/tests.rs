@@ -21,8 +21,8 @@ fn flat(t: &mut MockTarget, c: char, poly: &[ScreenVertex<0>]) -> FillOutcome {
 #[test]
 fn flat_triangle_pattern() {
     let mut t = MockTarget::new(8, 6);
-    // Left edge on x = 1 (pixel centres 0.5 and 1.5 either side), the
-    // hypotenuse crosses row 4's centre line at x = 6.4.
+    // Left edge on x = 1 (pixel centers 0.5 and 1.5 either side), the
+    // hypotenuse crosses row 4's center line at x = 6.4.
     let out = flat(&mut t, '#', &[sv(1.0, 0.0), sv(7.0, 5.0), sv(1.0, 5.0)]);
     assert_eq!(out, FillOutcome::Drawn);
     t.assert_pattern(&[
@@ -37,7 +37,7 @@ fn flat_triangle_pattern() {
 
 #[test]
 fn edges_through_pixel_centres_follow_top_left_rule() {
-    // A square whose edges pass exactly through pixel centres 1.5 and 4.5:
+    // A square whose edges pass exactly through pixel centers 1.5 and 4.5:
     // the left and top edges are drawn, the right and bottom are not.
     let mut t = MockTarget::new(7, 7);
     let sq = [sv(1.5, 1.5), sv(4.5, 1.5), sv(4.5, 4.5), sv(1.5, 4.5)];
@@ -61,7 +61,7 @@ fn edges_through_pixel_centres_follow_top_left_rule() {
 
 #[test]
 fn shared_diagonal_is_covered_exactly_once() {
-    // Two triangles split a quad along a diagonal through pixel centres;
+    // Two triangles split a quad along a diagonal through pixel centers;
     // MockTarget panics on any pixel written twice.
     let mut t = MockTarget::new(6, 6);
     let (a, b, c, d) = (sv(0.5, 0.5), sv(5.5, 0.5), sv(5.5, 5.5), sv(0.5, 5.5));
@@ -127,7 +127,7 @@ fn gouraud_pattern() {
 fn gouraud_values_never_leave_the_ramp() {
     // Out-of-range varyings (intensity beyond 255 and below 0) are clamped
     // per span; the ramp lookup cannot index outside 256 entries anyway,
-    // but colours must be the clamped ones.
+    // but colors must be the clamped ones.
     let mut ramp = ['m'; 256];
     ramp[0] = 'L';
     ramp[255] = 'H';
@@ -732,7 +732,7 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(512))]
 
     /// Vertices on the half-pixel lattice (multiples of 8 in 28.4), so
-    /// that edges and vertices often pass exactly through pixel centres:
+    /// that edges and vertices often pass exactly through pixel centers:
     /// the ties the top-left rule decides. Fans around a lattice point
     /// also check that the ties partition.
     #[test]

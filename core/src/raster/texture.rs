@@ -64,7 +64,7 @@ impl<C: Copy, W: Wrap> SpanShader<2> for AffineTexture<'_, C, W> {
 /// [`IntensityUv`](crate::pipeline::IntensityUv) vertices produce. Each
 /// pixel is its texel scaled by the interpolated intensity
 /// ([`Shade::scale`]), so full intensity (255) gives exactly
-/// [`AffineTexture`]'s colour.
+/// [`AffineTexture`]'s color.
 ///
 /// Per pixel: the affine texture's work plus one scale per channel.
 #[derive(Clone, Copy, Debug)]

@@ -83,11 +83,11 @@ impl<S: Scalar> Aabb<S> {
 
     /// The box around a sphere.
     #[must_use]
-    pub fn around_sphere(centre: Vec3<S>, radius: S) -> Self {
+    pub fn around_sphere(center: Vec3<S>, radius: S) -> Self {
         let r = Vec3::splat(radius.abs());
         Self {
-            min: centre - r,
-            max: centre + r,
+            min: center - r,
+            max: center + r,
         }
     }
 
@@ -239,32 +239,32 @@ impl core::error::Error for BoundingSphereError {}
 /// Efficient Bounding Sphere", *Graphics Gems*, 1990): two passes, at most
 /// about 5–20 % larger than the minimal sphere in practice, no guarantee
 /// of minimality. A final pass sets the radius to the largest distance
-/// from the centre, padded by a few ulps, so every point is inside despite
+/// from the center, padded by a few ulps, so every point is inside despite
 /// rounding.
 ///
 /// The ray test ([`BoundingVolume::may_hit`]) works in the frame scaled by
 /// `s = max(‖Q − C‖_∞, r)` with a unit direction, so every intermediate is
 /// a few units at most (the scaling of [`Sphere`](super::Sphere), after
-/// Ray Tracing Gems ch. 7): it rejects when the distance from the centre
+/// Ray Tracing Gems ch. 7): it rejects when the distance from the center
 /// to the ray's line exceeds `r` by more than 8 ulps of `s`, or when
 /// the origin is outside and the ray points away. A fixed-point difference
 /// that overflows is not used to reject.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BoundingSphere<S> {
-    centre: Vec3<S>,
+    center: Vec3<S>,
     radius: S,
 }
 
 impl<S: Scalar> BoundingSphere<S> {
-    /// The sphere with the given centre and radius.
+    /// The sphere with the given center and radius.
     ///
     /// # Errors
     /// [`BoundingSphereError::NonFinite`] for NaN, ±∞ or a negative radius.
-    pub fn new(centre: Vec3<S>, radius: S) -> Result<Self, BoundingSphereError> {
-        if !(centre.is_finite() && radius.is_finite() && radius >= S::ZERO) {
+    pub fn new(center: Vec3<S>, radius: S) -> Result<Self, BoundingSphereError> {
+        if !(center.is_finite() && radius.is_finite() && radius >= S::ZERO) {
             return Err(BoundingSphereError::NonFinite);
         }
-        Ok(Self { centre, radius })
+        Ok(Self { center, radius })
     }
 
     /// Ritter's bounding sphere of the points (see the type docs).
@@ -294,35 +294,35 @@ impl<S: Scalar> BoundingSphere<S> {
         // Pass 1: a diameter guess from two far-apart points.
         let y = farthest(x)?;
         let z = farthest(y)?;
-        let mut centre = (y + z) * S::HALF;
+        let mut center = (y + z) * S::HALF;
         let mut radius = dist(z, y)? * S::HALF;
-        // Pass 2: grow to take in each point outside, moving the centre
+        // Pass 2: grow to take in each point outside, moving the center
         // towards it so the old sphere stays inside the new one.
         for &p in points {
-            let d = dist(p, centre)?;
+            let d = dist(p, center)?;
             if d > radius {
                 let r = (radius + d) * S::HALF;
                 let k = (d - radius) * S::HALF / d;
-                let off = sub3(p, centre).ok_or(BoundingSphereError::Overflow)?;
-                centre += off * k;
+                let off = sub3(p, center).ok_or(BoundingSphereError::Overflow)?;
+                center += off * k;
                 radius = r;
             }
         }
-        // Pass 3: the exact largest distance from the chosen centre, then
+        // Pass 3: the exact largest distance from the chosen center, then
         // a pad of a few ulps (relative, and one absolute step for fixed
         // point) against the rounding of the distances.
         let mut r = S::ZERO;
         for &p in points {
-            r = r.max_of(dist(p, centre)?);
+            r = r.max_of(dist(p, center)?);
         }
         let r = r + r * S::EPSILON * S::from_i32(8) + S::EPSILON * S::TWO;
-        Self::new(centre, r)
+        Self::new(center, r)
     }
 
-    /// The centre.
+    /// The center.
     #[must_use]
-    pub fn centre(&self) -> Vec3<S> {
-        self.centre
+    pub fn center(&self) -> Vec3<S> {
+        self.center
     }
 
     /// The radius.
@@ -334,7 +334,7 @@ impl<S: Scalar> BoundingSphere<S> {
 
 impl<S: Scalar> BoundingVolume<S> for BoundingSphere<S> {
     fn may_hit(&self, ray: &Ray<S>, _t_min: S) -> bool {
-        let Some(f) = sub3(ray.origin(), self.centre) else {
+        let Some(f) = sub3(ray.origin(), self.center) else {
             return true; // overflow: do not reject
         };
         let s = f.max_abs().max_of(self.radius);

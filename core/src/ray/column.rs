@@ -15,16 +15,16 @@
 //!   `position`, the unit view direction `w`, the screen O = V + f·w one
 //!   focus distance f (pixels) ahead, and the per-pixel screen vector
 //!   u = right (unit, ⟂ w). The ray of column i runs from V through the
-//!   centre of that column, `d_i = w + (i + ½ − width/2)/f · u`, exactly as
+//!   center of that column, `d_i = w + (i + ½ − width/2)/f · u`, exactly as
 //!   [`RayCamera::column_ray`](super::RayCamera::column_ray) does in 3D.
 //! - Because `w·d_i = 1`, the ray parameter t at a hit **is** the
 //!   perpendicular distance from the screen plane (the depth along w), not
 //!   the Euclidean distance: using it for the wall height gives straight
 //!   walls, with no fisheye.
 //! - The eye is at height ½ and walls are 1 high, so a wall at
-//!   perpendicular distance t spans screen rows whose centres lie in
+//!   perpendicular distance t spans screen rows whose centers lie in
 //!   `[c_y − f/(2t), c_y + f/(2t))`, `c_y = height/2`. Rows above are
-//!   ceiling, rows below floor (flat colours).
+//!   ceiling, rows below floor (flat colors).
 //!
 //! # Traversal
 //!
@@ -427,7 +427,7 @@ pub fn cast_columns<S: Scalar>(
         }
         return Err(e);
     }
-    // Wall extent: rows with centres in [c_y − f/(2t), c_y + f/(2t)), in
+    // Wall extent: rows with centers in [c_y − f/(2t), c_y + f/(2t)), in
     // 24.8. The half height is clamped so that the integer arithmetic in
     // `draw_columns` cannot overflow: a wall taller than 64 screens is
     // drawn as one 64 screens tall (identical on screen, the texture's v
@@ -463,13 +463,13 @@ pub struct ColumnStyle<'a, C> {
     pub x_side: Texture<'a, C>,
     /// Texture of walls hit on a y side (e.g. a darker copy).
     pub y_side: Texture<'a, C>,
-    /// Colour above the walls.
+    /// Color above the walls.
     pub ceiling: C,
-    /// Colour below the walls.
+    /// Color below the walls.
     pub floor: C,
 }
 
-/// The colour of row `y` (pixel centre y + ½) in a column.
+/// The color of row `y` (pixel center y + ½) in a column.
 #[inline]
 fn column_color<S, C: Copy>(col: &Column<S>, y: i32, mid8: i32, style: &ColumnStyle<'_, C>) -> C {
     let p8 = y.saturating_mul(256).saturating_add(128);

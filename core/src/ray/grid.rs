@@ -24,7 +24,7 @@
 //! as in [`nearest_hit`](super::nearest_hit), so the result equals brute
 //! force. The one exception: a hit that a primitive reports *outside its
 //! own box* (only through rounding, e.g. a fixed-point ray whose huge
-//! direction quantises t coarsely) may be missed, since the grid visits a
+//! direction quantizes t coarsely) may be missed, since the grid visits a
 //! primitive only in the cells its box overlaps (found by the `grid` fuzz
 //! target, which checks everything else).
 //!

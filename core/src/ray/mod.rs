@@ -2,9 +2,9 @@
 //! nearest hit over a set of posed objects.
 //!
 //! The module follows the ray-casting section of the viewing-process
-//! chapter: a camera is a screen centre O, per-pixel screen vectors u
+//! chapter: a camera is a screen center O, per-pixel screen vectors u
 //! (right) and v (down) and a viewer V; the ray for a pixel runs from V
-//! through the pixel's centre on the screen, `X = Q + t·d` with `t > 0`.
+//! through the pixel's center on the screen, `X = Q + t·d` with `t > 0`.
 //!
 //! Every concept lives in its own submodule, the same way for each
 //! primitive (construction with a small error enum, then `intersect`); the
@@ -28,7 +28,7 @@
 //!
 //! # Examples
 //!
-//! One camera for both paths; cast the centre pixel at a posed sphere
+//! One camera for both paths; cast the center pixel at a posed sphere
 //! (needs the `sphere` feature).
 //!
 //! ```

@@ -35,7 +35,7 @@ impl core::error::Error for PlaneError {}
 /// A plane through `point` with unit `normal`: the points X with
 /// `normal·(X − point) = 0`.
 ///
-/// The normal as given (before normalising) is kept too: whether a ray is
+/// The normal as given (before normalizing) is kept too: whether a ray is
 /// parallel to the plane is decided exactly on it (see
 /// [`Self::intersect`]).
 ///
@@ -51,7 +51,7 @@ pub struct Plane<S> {
 
 impl<S: Scalar> Plane<S> {
     /// The plane through `point` with the given (not necessarily unit)
-    /// normal; the normal is normalised.
+    /// normal; the normal is normalized.
     ///
     /// # Errors
     /// [`PlaneError::NonFinite`], [`PlaneError::ZeroNormal`].

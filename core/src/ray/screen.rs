@@ -1,10 +1,10 @@
-//! The ray-casting camera of the viewing-process chapter: screen centre O,
+//! The ray-casting camera of the viewing-process chapter: screen center O,
 //! per-pixel screen vectors u (right) and v (down), viewer V.
 //!
 //! The screen point of pixel (i, j) is the chapter's
-//! `R = O + (i − w/2)·u + (j − h/2)·v`, taken at the pixel's **centre**,
+//! `R = O + (i − w/2)·u + (j − h/2)·v`, taken at the pixel's **center**,
 //! `R = O + (i + ½ − c_x)·u + (j + ½ − c_y)·v` with `(c_x, c_y)` the
-//! projection centre (w/2, h/2 by default), matching the crate's screen
+//! projection center (w/2, h/2 by default), matching the crate's screen
 //! convention that pixel (i, j) covers `[i, i+1) × [j, j+1)`. The ray runs
 //! from V through R, `d = R − V`, so `t = 1` is on the screen.
 //!
@@ -59,7 +59,7 @@ impl core::error::Error for RayCameraError {
 /// A ray-casting camera (O, u, v, V) for a `width`×`height` screen.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RayCamera<S> {
-    /// Screen centre O (world), the point at screen position `centre`.
+    /// Screen center O (world), the point at screen position `center`.
     pub screen_centre: Vec3<S>,
     /// World vector from one pixel to the next to the right.
     pub u: Vec3<S>,
@@ -67,8 +67,8 @@ pub struct RayCamera<S> {
     pub v: Vec3<S>,
     /// The viewer V (world).
     pub viewer: Vec3<S>,
-    /// Screen position of O in pixels (the projection centre).
-    pub centre: Vec2<S>,
+    /// Screen position of O in pixels (the projection center).
+    pub center: Vec2<S>,
     /// Screen width in pixels.
     pub width: u16,
     /// Screen height in pixels.
@@ -100,7 +100,7 @@ impl<S: Scalar> RayCamera<S> {
             u,
             v,
             viewer,
-            centre: Vec2::new(half(width), half(height)),
+            center: Vec2::new(half(width), half(height)),
             width,
             height,
         })
@@ -110,7 +110,7 @@ impl<S: Scalar> RayCamera<S> {
     /// `camera` and a perspective `projection` with focus f: V is the
     /// camera position; with (u_w, v_w, w_w) the world images of the view
     /// axes (the columns of the inverse world→view matrix), `u = u_w`,
-    /// `v = v_w` and `O = V + f·w_w` at screen position `projection.centre`.
+    /// `v = v_w` and `O = V + f·w_w` at screen position `projection.center`.
     /// The screen thus sits f world units along the view axis, one unit per
     /// pixel.
     ///
@@ -139,10 +139,10 @@ impl<S: Scalar> RayCamera<S> {
         let (u, v, w) = (inv.col(0), inv.col(1), inv.col(2));
         let viewer = camera.position();
         let mut cam = Self::new(viewer + w * focus, u, v, viewer, width, height)?;
-        if !projection.centre.is_finite() {
+        if !projection.center.is_finite() {
             return Err(RayCameraError::NonFinite);
         }
-        cam.centre = projection.centre;
+        cam.center = projection.center;
         Ok(cam)
     }
 
@@ -150,7 +150,7 @@ impl<S: Scalar> RayCamera<S> {
     /// `O + (x_s − c_x)·u + (y_s − c_y)·v`.
     #[must_use]
     pub fn screen_point(&self, x_s: S, y_s: S) -> Vec3<S> {
-        self.screen_centre + self.u * (x_s - self.centre.x) + self.v * (y_s - self.centre.y)
+        self.screen_centre + self.u * (x_s - self.center.x) + self.v * (y_s - self.center.y)
     }
 
     /// The ray from V through screen position (x_s, y_s); `None` when V
@@ -160,7 +160,7 @@ impl<S: Scalar> RayCamera<S> {
         Ray::through(self.viewer, self.screen_point(x_s, y_s)).ok()
     }
 
-    /// The ray through the centre (i + ½, j + ½) of pixel (i, j). Pixels
+    /// The ray through the center (i + ½, j + ½) of pixel (i, j). Pixels
     /// outside the screen are allowed (the formula extends).
     #[must_use]
     pub fn pixel_ray(&self, i: u16, j: u16) -> Option<Ray<S>> {
@@ -169,10 +169,10 @@ impl<S: Scalar> RayCamera<S> {
     }
 
     /// The ray for column i of a column caster: through (i + ½, c_y), the
-    /// column's centre on the horizon row of the projection centre.
+    /// column's center on the horizon row of the projection center.
     #[must_use]
     pub fn column_ray(&self, i: u16) -> Option<Ray<S>> {
-        self.ray_through(S::from_i32(i as i32) + S::HALF, self.centre.y)
+        self.ray_through(S::from_i32(i as i32) + S::HALF, self.center.y)
     }
 
     /// The column rays `(i, column_ray(i))` for `i in 0..width`.

@@ -8,7 +8,7 @@
 //! - The discriminant `b² − a·c` cancels catastrophically for small or
 //!   distant spheres. It equals `a·(r² − |l|²)` with
 //!   `l = f − (b/a)·d` the vector from the closest point of the line to
-//!   the centre, which does not (ch. 7, eq. 7.5). We go one step further
+//!   the center, which does not (ch. 7, eq. 7.5). We go one step further
 //!   and take the square root as `√a·√(r − |l|)·√(r + |l|)`, so nothing
 //!   small is squared: in fixed point a distant small sphere would
 //!   otherwise underflow to nothing.
@@ -49,7 +49,7 @@ use core::fmt;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum SphereError {
-    /// The centre or radius is NaN or ±∞.
+    /// The center or radius is NaN or ±∞.
     NonFinite,
     /// The radius is zero or negative.
     NonPositiveRadius,
@@ -58,7 +58,7 @@ pub enum SphereError {
 impl fmt::Display for SphereError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Self::NonFinite => f.write_str("sphere centre or radius contains NaN or infinity"),
+            Self::NonFinite => f.write_str("sphere center or radius contains NaN or infinity"),
             Self::NonPositiveRadius => f.write_str("sphere radius is not positive"),
         }
     }
@@ -80,32 +80,32 @@ pub enum Roots<S> {
     Two(S, S),
 }
 
-/// A sphere with a finite centre and a positive finite radius.
+/// A sphere with a finite center and a positive finite radius.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sphere<S> {
-    centre: Vec3<S>,
+    center: Vec3<S>,
     radius: S,
 }
 
 impl<S: Scalar> Sphere<S> {
-    /// The sphere with the given centre and radius.
+    /// The sphere with the given center and radius.
     ///
     /// # Errors
     /// [`SphereError::NonFinite`], [`SphereError::NonPositiveRadius`].
-    pub fn new(centre: Vec3<S>, radius: S) -> Result<Self, SphereError> {
-        if !(centre.is_finite() && radius.is_finite()) {
+    pub fn new(center: Vec3<S>, radius: S) -> Result<Self, SphereError> {
+        if !(center.is_finite() && radius.is_finite()) {
             return Err(SphereError::NonFinite);
         }
         if radius.partial_cmp(&S::ZERO) != Some(core::cmp::Ordering::Greater) {
             return Err(SphereError::NonPositiveRadius);
         }
-        Ok(Self { centre, radius })
+        Ok(Self { center, radius })
     }
 
-    /// The centre.
+    /// The center.
     #[must_use]
-    pub fn centre(&self) -> Vec3<S> {
-        self.centre
+    pub fn center(&self) -> Vec3<S> {
+        self.center
     }
 
     /// The radius.
@@ -117,7 +117,7 @@ impl<S: Scalar> Sphere<S> {
     /// The outward unit normal at a point of the surface.
     #[must_use]
     pub fn normal_at(&self, p: Vec3<S>) -> Vec3<S> {
-        sub3(p, self.centre)
+        sub3(p, self.center)
             .and_then(Vec3::try_normalize)
             .unwrap_or(Vec3::Z)
     }
@@ -140,7 +140,7 @@ impl<S: Scalar> Sphere<S> {
             return None;
         }
         let dn = d / len;
-        let f = sub3(ray.origin(), self.centre)?;
+        let f = sub3(ray.origin(), self.center)?;
         let s = f.max_abs().max_of(self.radius);
         let fs = f / s;
         let r = self.radius / s;

@@ -49,7 +49,7 @@ use core::fmt;
 /// scalar type: the sheared vertices are rounded (in fixed point too, the
 /// shear factors are), which can leave it a tiny area (found by the
 /// `ray_triangle` fuzz target). The hit then lies on the segment to
-/// rounding, where its neighbours in a mesh are hit as well, so such a
+/// rounding, where its neighbors in a mesh are hit as well, so such a
 /// sliver never opens or closes a gap.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Triangle<S> {
@@ -128,7 +128,7 @@ impl<S: Scalar> Triangle<S> {
         Self { v: [a, b, c] }
     }
 
-    /// The unit normal `(B − A) × (C − A)`, normalised; `None` when
+    /// The unit normal `(B − A) × (C − A)`, normalized; `None` when
     /// degenerate.
     #[must_use]
     pub fn normal(&self) -> Option<Vec3<S>> {

@@ -2,7 +2,7 @@
 //! fractional bits, stored as [`fixed::FixedI32<Frac>`].
 //!
 //! All arithmetic is done here on the raw bits with `i64` intermediates, so
-//! the rounding and overflow behaviour is ours, documented, and identical on
+//! the rounding and overflow behavior is ours, documented, and identical on
 //! every target (a Cortex-M0 computes the same bits as an x86 host):
 //! - `+ -` saturate;
 //! - `*` rounds to nearest (ties toward +∞) and saturates;
@@ -174,7 +174,7 @@ impl<Frac: LeEqU32> Fx<Frac> {
 ///
 /// ARMv6-M (Cortex-M0/M0+, RP2040) has no 32×32→64 multiply, and LLVM
 /// lowers `a as i64 * b as i64` there to a call of `__aeabi_lmul`, a full
-/// 64×64 multiply: that call was 21 % of a W1 frame. There (recognised as
+/// 64×64 multiply: that call was 21 % of a W1 frame. There (recognized as
 /// 32-bit ARM without atomic compare-and-swap, which ARMv6-M lacks) the
 /// product is assembled from four 16×16 multiplies instead; elsewhere the
 /// hardware's widening multiply is used. Both give the same bits (the

@@ -1,5 +1,5 @@
 //! Building scene descriptions by hand: a [`Scene`] constructor with
-//! defaults, and mesh quantising that runs at compile time.
+//! defaults, and mesh quantizing that runs at compile time.
 
 use super::{CameraSpec, Color, Light, ProjectionSpec, Scene, SceneObject, SceneSphere};
 
@@ -97,7 +97,7 @@ impl<'a> Scene<'a> {
     }
 }
 
-/// Mesh positions quantised to `i16` steps of one power-of-two
+/// Mesh positions quantized to `i16` steps of one power-of-two
 /// [`scale`](Self::scale), the form [`MeshData`](super::MeshData) stores.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct QuantizedPositions<const N: usize> {
@@ -108,7 +108,7 @@ pub struct QuantizedPositions<const N: usize> {
     pub scale: f32,
 }
 
-/// Quantises f32 positions for a [`MeshData`](super::MeshData), at compile
+/// Quantizes f32 positions for a [`MeshData`](super::MeshData), at compile
 /// time when called in a `const` or `static`: the step is a power of two,
 /// so `positions[k] · scale` is exact in f32, and every coordinate is
 /// rounded to the nearest step (ties away from zero), an error of at most
@@ -191,11 +191,11 @@ pub const fn quantize_positions<const N: usize>(positions: [[f32; 3]; N]) -> Qua
     }
 }
 
-/// Quantises unit vertex normals to the `i16` units of 1/32767 that
+/// Quantizes unit vertex normals to the `i16` units of 1/32767 that
 /// [`MeshData::normals`](super::MeshData::normals) stores, at compile time
 /// when called in a `const` or `static`. Components are rounded to the
 /// nearest unit (ties away from zero) and clamped to ±32767; the vectors
-/// are not renormalised (the renderer normalises after transforming).
+/// are not renormalised (the renderer normalizes after transforming).
 /// A non-finite component is a compile error in a `const`.
 ///
 /// ```

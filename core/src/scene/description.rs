@@ -10,10 +10,10 @@ use crate::scalar::Scalar;
 use crate::transform::{Euler, Pose};
 use embedded_graphics::pixelcolor::Rgb565;
 
-/// The colour type of scenes and of their images.
+/// The color type of scenes and of their images.
 pub type Color = Rgb565;
 
-/// An indexed triangle mesh over borrowed slices, quantised: the
+/// An indexed triangle mesh over borrowed slices, quantized: the
 /// description a file or `const` data gives. [`MeshData::prepare`] turns it
 /// into the render scalar.
 ///
@@ -26,7 +26,7 @@ pub struct MeshData<'a> {
     /// winding (a closed, consistently oriented surface, whose back faces
     /// can never be seen from outside).
     pub closed: bool,
-    /// Quantised object-space positions: position `k` is
+    /// Quantized object-space positions: position `k` is
     /// `positions[k] · scale`.
     pub positions: &'a [[i16; 3]],
     /// World units per position step.
@@ -69,7 +69,7 @@ pub const AUTO_AFFINE_MAX_ERROR: f32 = 0.5;
 /// A surface's appearance.
 #[derive(Clone, Copy, Debug)]
 pub enum Material<'a> {
-    /// One colour per triangle, lit with the face normal.
+    /// One color per triangle, lit with the face normal.
     Flat(Color),
     /// Lit at the vertices and interpolated.
     Gouraud(Color),
@@ -97,11 +97,11 @@ pub struct SceneObject<'a> {
 /// A sphere, drawn by the ray path only.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SceneSphere {
-    /// Centre in world coordinates.
-    pub centre: [f32; 3],
+    /// Center in world coordinates.
+    pub center: [f32; 3],
     /// Radius.
     pub radius: f32,
-    /// Base colour, lit per hit.
+    /// Base color, lit per hit.
     pub color: Color,
 }
 
@@ -226,7 +226,7 @@ pub struct Scene<'a> {
     pub far: f32,
     /// The light.
     pub light: Light,
-    /// Colour where nothing is hit.
+    /// Color where nothing is hit.
     pub background: Color,
     /// Meshes (both paths).
     pub objects: &'a [SceneObject<'a>],
@@ -257,7 +257,7 @@ pub fn vec3<S: Scalar>(v: [f32; 3]) -> Vec3<S> {
 pub struct View<S> {
     /// The camera.
     pub camera: Camera<S>,
-    /// The projection about the image centre.
+    /// The projection about the image center.
     pub projection: Projection<S>,
     /// Image width in pixels.
     pub width: u16,
@@ -458,7 +458,7 @@ impl Scene<'_> {
             }
         }
         for (k, s) in self.spheres.iter().enumerate() {
-            if !(s.radius > 0.0 && s.radius.is_finite() && s.centre.iter().all(|c| c.is_finite())) {
+            if !(s.radius > 0.0 && s.radius.is_finite() && s.center.iter().all(|c| c.is_finite())) {
                 return Err(SceneError::BadSphere { sphere: k });
             }
         }

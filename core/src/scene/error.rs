@@ -99,7 +99,7 @@ pub enum SceneError {
         /// Object index in the scene.
         object: usize,
     },
-    /// A sphere has a non-positive or non-finite radius or centre.
+    /// A sphere has a non-positive or non-finite radius or center.
     BadSphere {
         /// Sphere index in the scene.
         sphere: usize,
@@ -165,7 +165,7 @@ impl fmt::Display for SceneError {
                     "object {object}: pose is NaN, infinite or not invertible"
                 )
             }
-            Self::BadSphere { sphere } => write!(f, "sphere {sphere}: bad centre or radius"),
+            Self::BadSphere { sphere } => write!(f, "sphere {sphere}: bad center or radius"),
         }
     }
 }

@@ -106,7 +106,7 @@ fn the_far_plane_clips_only_when_asked() {
         16.0,
     )
     .unwrap();
-    // A triangle at z = 20, beyond far = 10, covering the screen centre.
+    // A triangle at z = 20, beyond far = 10, covering the screen center.
     let tri = [(-5.0, -5.0), (5.0, -5.0), (0.0, 5.0)]
         .map(|(x, y)| Vertex::new(Vec3::new(x, y, 20.0f32), ()));
     let draw = |pipe: &Pipeline<f32>| {
@@ -116,7 +116,7 @@ fn the_far_plane_clips_only_when_asked() {
         (r, px.iter().filter(|&&c| c == Color::new(31, 0, 0)).count())
     };
     // Whatever the features, a new pipeline draws it (features never
-    // change behaviour).
+    // change behavior).
     assert!(!base.clips_far());
     let (r, drawn) = draw(&base);
     assert_eq!(r, Ok(DrawOutcome::Filled(FillOutcome::Drawn)));

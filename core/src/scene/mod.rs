@@ -25,7 +25,7 @@
 //! # Prepare once, draw per frame
 //!
 //! ```text
-//! Scene (f32, quantised meshes) ──Scene::prepare──► [PreparedObject<S>]   once, into caller storage
+//! Scene (f32, quantized meshes) ──Scene::prepare──► [PreparedObject<S>]   once, into caller storage
 //! Scene ──Renderer::new──► Renderer<S> (camera, projection, clip volume, light)
 //! per frame: set poses ──Renderer::project──► Frame (every vertex once, into caller scratch)
 //! per band:  Frame::draw(target, depth)   (cull, light, set up, scan-convert)
@@ -38,7 +38,7 @@
 //! Scene-level numbers (camera, poses, light, spheres) are `f32` so that
 //! scenes can be `const`; they are converted to the rendering scalar `S`
 //! once, by [`Scene::prepare`] and [`Renderer::new`] (a general camera is
-//! solved in `f32` for a fixed-point `S`, then rounded). Mesh positions are quantised `i16` with one `f32`
+//! solved in `f32` for a fixed-point `S`, then rounded). Mesh positions are quantized `i16` with one `f32`
 //! scale per mesh (world units per step), normals are `i16` in units of
 //! 1/32767, texture coordinates are `i16` texels: small in flash and exact
 //! in I16F16.
@@ -46,16 +46,16 @@
 //! # Material model
 //!
 //! Light is one directional light with an ambient and a diffuse term:
-//! `I = ambient + diffuse·max(0, n·L)`, clamped to [0, 1] and quantised to
-//! `q = ⌊255·I⌋`; the pixel is the base colour scaled by `q/255`
+//! `I = ambient + diffuse·max(0, n·L)`, clamped to [0, 1] and quantized to
+//! `q = ⌊255·I⌋`; the pixel is the base color scaled by `q/255`
 //! ([`Shade::scale`](crate::raster::Shade::scale)).
 //!
 //! - [`Material::Flat`]: `n` is the triangle's face normal, the same exact
-//!   integer direction of the quantised vertices on both paths. The raster
-//!   path normalises it once when the mesh is prepared and lights it in
+//!   integer direction of the quantized vertices on both paths. The raster
+//!   path normalizes it once when the mesh is prepared and lights it in
 //!   object space (the light turned by the pose); the ray path turns and
-//!   normalises it per hit and lights it in world space. The two round
-//!   differently, so a triangle's colour can differ by one intensity step
+//!   normalizes it per hit and lights it in world space. The two round
+//!   differently, so a triangle's color can differ by one intensity step
 //!   where `255·I` falls within rounding of an integer.
 //! - [`Material::Gouraud`]: `I` is evaluated at the vertices (vertex
 //!   normals; for a mesh without them the raster path prepares
@@ -63,7 +63,7 @@
 //!   path interpolates it linearly in screen space (16.16 varyings); the
 //!   ray path takes the hit's barycentric weights, `I = u·I_A + v·I_B +
 //!   w·I_C`, which is linear in object space (perspective-correct). Both
-//!   then quantise and scale the colour the same way.
+//!   then quantize and scale the color the same way.
 //! - [`Material::Texture`]: unlit nearest-texel sampling, repeating a
 //!   power-of-two texture. The ray path interpolates the vertices'
 //!   texture coordinates with the hit's barycentric weights (for a planar
@@ -74,7 +74,7 @@
 //! - Spheres ([`SceneSphere`]) are drawn by the ray path only, lit per hit
 //!   with the sphere normal.
 //!
-//! Both paths sample at pixel centres (i + ½, j + ½) and use the nearest
+//! Both paths sample at pixel centers (i + ½, j + ½) and use the nearest
 //! surface, so their images can be compared pixel by pixel.
 
 mod build;

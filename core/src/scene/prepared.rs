@@ -74,7 +74,7 @@ impl core::error::Error for MeshError {}
 /// face normals (for flat shading), unit vertex normals (for Gouraud) and
 /// texture coordinates in texels, all borrowed.
 ///
-/// Build one with [`MeshData::prepare`] from quantised data, or with
+/// Build one with [`MeshData::prepare`] from quantized data, or with
 /// [`PreparedMesh::new`] from positions and normals you computed (for
 /// example `const` data for a firmware, so that no `f32` code runs on an
 /// FPU-less core).
@@ -94,7 +94,7 @@ pub struct PreparedMesh<'a, S> {
 }
 
 impl<S: Scalar> PreparedMesh<'_, S> {
-    /// An empty mesh (draws nothing), to initialise object storage.
+    /// An empty mesh (draws nothing), to initialize object storage.
     pub const EMPTY: Self = PreparedMesh {
         positions: &[],
         triangles: &[],
@@ -202,7 +202,7 @@ pub enum Normals {
     None,
     /// Face normals (flat shading).
     Face,
-    /// Vertex normals (Gouraud): the mesh's own, or else the normalised
+    /// Vertex normals (Gouraud): the mesh's own, or else the normalized
     /// area-weighted sum of the face normals at each vertex.
     Vertex,
 }
@@ -235,7 +235,7 @@ impl MeshData<'_> {
     /// positions `positions[k]·scale` in `S`, then the normals `normals`
     /// asks for. A mirrored mesh (negative scale) is prepared as open, so
     /// it is drawn from both sides. Face normals come from the exact integer cross product of
-    /// the quantised positions (so small triangles keep their normal in
+    /// the quantized positions (so small triangles keep their normal in
     /// fixed point); a negative scale flips them. Degenerate triangles get
     /// a zero normal (they are lit by the ambient term only and cover no
     /// pixel).
@@ -315,7 +315,7 @@ impl MeshData<'_> {
 
     /// Unit face normals in `S`, one per triangle, into `out` (pairwise;
     /// extra entries of `out` are left alone): the exact integer cross
-    /// product of the quantised positions, normalised, flipped for a
+    /// product of the quantized positions, normalized, flipped for a
     /// negative scale, zero for a degenerate triangle.
     pub fn face_normals_into<S: Scalar>(&self, out: &mut [Vec3<S>]) {
         let flip = self.scale < 0.0;
@@ -326,7 +326,7 @@ impl MeshData<'_> {
         }
     }
 
-    /// Vertex normals as the normalised sum of the exact face cross
+    /// Vertex normals as the normalized sum of the exact face cross
     /// products at each vertex (area weighting), accumulated in `S` after
     /// scaling every cross product by the largest one, so the sum cannot
     /// overflow a fixed-point format while each vertex has fewer than
@@ -393,7 +393,7 @@ pub struct PreparedObject<'a, S> {
 }
 
 impl<S: Scalar> PreparedObject<'_, S> {
-    /// An object that draws nothing, to initialise object storage.
+    /// An object that draws nothing, to initialize object storage.
     pub const EMPTY: Self = PreparedObject {
         mesh: PreparedMesh::EMPTY,
         pose: Pose::new(Vec3::ZERO, Euler::ZERO),

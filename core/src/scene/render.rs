@@ -217,7 +217,7 @@ impl<S: Scalar> Renderer<S> {
         Ok(())
     }
 
-    /// The background colour [`Frame::draw`] fills with.
+    /// The background color [`Frame::draw`] fills with.
     #[must_use]
     pub fn background(&self) -> Color {
         self.background
@@ -367,7 +367,7 @@ impl<S: Scalar> Tri<'_, '_, S> {
         let (a, b, c) = (get(tri[0]), get(tri[1]), get(tri[2]));
         let outcome = if a.outcode | b.outcode | c.outcode == 0 {
             let (ya, yb, yc) = (a.screen.y, b.screen.y, c.screen.y);
-            // Rows with centres in [y_min, y_max): see raster's fill rule.
+            // Rows with centers in [y_min, y_max): see raster's fill rule.
             let top = (ya.min(yb).min(yc) + 7) >> 4;
             let bottom = (ya.max(yb).max(yc) + 7) >> 4;
             if bottom <= self.rows.0 || top >= self.rows.1 {

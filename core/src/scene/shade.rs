@@ -1,6 +1,6 @@
 //! The material model shared by both paths (see the module docs): the
-//! light, the intensity quantisation and the exact face directions of the
-//! quantised meshes. Interpolation is each path's own: the raster path's
+//! light, the intensity quantization and the exact face directions of the
+//! quantized meshes. Interpolation is each path's own: the raster path's
 //! varyings live in `pipeline::vertex`, the ray path shades at the hit.
 
 // The per-vertex and per-hit helpers below that only the ray path calls
@@ -90,7 +90,7 @@ pub(crate) fn position<S: Scalar>(mesh: &MeshData<'_>, scale: S, k: u16) -> Vec3
 const INV_2_14: f32 = 1.0 / 16384.0;
 
 /// The exact cross product `(b − a) × (c − a)` of triangle `tri` of
-/// quantised positions, in i64 (components below 2^17 each, so below
+/// quantized positions, in i64 (components below 2^17 each, so below
 /// 2^35); a missing index reads as the origin.
 pub(crate) fn face_cross(positions: &[[i16; 3]], tri: [u16; 3]) -> [i64; 3] {
     let p = |k: u16| {
@@ -129,7 +129,7 @@ pub(crate) fn face_direction<S: Scalar>(
 }
 
 /// The world-space unit face normal of triangle `tri` under rotation
-/// `rot` ([`face_direction`], turned, normalised). `None` for a
+/// `rot` ([`face_direction`], turned, normalized). `None` for a
 /// degenerate triangle.
 #[cfg(feature = "raycast")]
 pub(crate) fn face_normal<S: Scalar>(

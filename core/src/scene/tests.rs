@@ -61,11 +61,11 @@ fn flat_cube_agrees_between_paths_in_f32_and_fixed() {
         let b = ray_image::<S>(&CUBE, 64, 48);
         let equal = a.iter().zip(&b).filter(|(p, q)| p == q).count();
         assert!(equal * 100 >= a.len() * 99, "{equal} of {}", a.len());
-        // The cube's faces are lit differently: several colours appear.
-        let mut colours: std::vec::Vec<_> = a.iter().map(|c| c.into_storage()).collect();
-        colours.sort_unstable();
-        colours.dedup();
-        assert!(colours.len() >= 4, "{colours:?}");
+        // The cube's faces are lit differently: several colors appear.
+        let mut colors: std::vec::Vec<_> = a.iter().map(|c| c.into_storage()).collect();
+        colors.sort_unstable();
+        colors.dedup();
+        assert!(colors.len() >= 4, "{colors:?}");
     }
     check::<f32>();
     check::<I16F16>();
@@ -376,7 +376,7 @@ fn renderer_with_a_direct_camera_equals_the_scene_camera() {
 /// `TextureMode::Auto` draws each triangle exactly as `Affine` or as
 /// `Perspective` does, as `choose_mapping`'s bound decides: affine iff
 /// `Δuv·(z_max − z_min)/(4·z_min) ≤ AUTO_AFFINE_MAX_ERROR`, the oracle
-/// computed here in f64 from the quantised positions (view z = −world z
+/// computed here in f64 from the quantized positions (view z = −world z
 /// for the camera at the origin with zero angles). Triangles within 2 %
 /// of the threshold are skipped (the rule sees the depths as 8.24
 /// perspective varyings shifted to 12 bits). Cases where the old

@@ -77,20 +77,20 @@ impl Rect {
 /// or writing outside their storage (clamp or ignore), so that a `Target`
 /// is safe on its own.
 pub trait Target {
-    /// The pixel colour stored.
+    /// The pixel color stored.
     type Color: Copy;
 
     /// The pixels this target can hold, in frame coordinates. The scan
     /// converter writes nowhere else.
     fn clip_rect(&self) -> Rect;
 
-    /// Sets pixels `x..x+len` of row `y` to one colour.
+    /// Sets pixels `x..x+len` of row `y` to one color.
     fn fill_solid(&mut self, y: i32, x: i32, len: u32, color: Self::Color);
 
     /// Sets pixels `x..x+len` of row `y` to successive results of
     /// `colors`, left to right. `colors` is called exactly once per pixel
     /// that is written, in order; pixels clipped away at the left are
-    /// still generated (and discarded) so that the colours stay aligned.
+    /// still generated (and discarded) so that the colors stay aligned.
     fn fill_with<F: FnMut() -> Self::Color>(&mut self, y: i32, x: i32, len: u32, colors: F);
 
     /// Direct access to pixels `x..x+len` of row `y`, when the target

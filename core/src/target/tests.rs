@@ -70,7 +70,7 @@ proptest! {
         for &(x, y, n) in &ops {
             fb.fill_solid(y, x, n, 1);
             let mut k = 0u32;
-            // Colours stay aligned: pixel x gets the (x − x_start)-th value.
+            // Colors stay aligned: pixel x gets the (x − x_start)-th value.
             fb.fill_with(y, x, n.min(1000), || { k += 1; 2 });
             let _ = fb.pixel(x, y);
         }

@@ -80,7 +80,7 @@ pub struct TextureVectors<S> {
 /// The per-pixel perspective mapping of a [`TextureVectors`] plane:
 /// with the view ray `D(x, y) = ((x − c_x)/f, (y − c_y)/f, 1)` through
 /// screen point (x, y) (pixels, x right, y down; pixel (i, j) has its
-/// centre at (i + ½, j + ½)),
+/// center at (i + ½, j + ½)),
 ///
 /// ```text
 /// u = k · D·a / D·n,   v = k · D·b / D·n
@@ -88,7 +88,7 @@ pub struct TextureVectors<S> {
 ///
 /// Each dot product is linear in x and y, so u and v are ratios of linear
 /// functions of the screen coordinates. `a` and `b` share one scale and
-/// `n` has its own (each normalised so its largest component is 1), and
+/// `n` has its own (each normalized so its largest component is 1), and
 /// `k` restores their ratio: that keeps the relative precision of fixed
 /// point in numerator and denominator alike.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -101,8 +101,8 @@ pub struct ScreenMapping<S> {
     pub n: Vec3<S>,
     /// The ratio of the two scales.
     pub k: S,
-    /// Screen centre (c_x, c_y).
-    pub centre: Vec2<S>,
+    /// Screen center (c_x, c_y).
+    pub center: Vec2<S>,
     /// Focus distance f in pixels.
     pub focus: S,
 }
@@ -111,8 +111,8 @@ impl<S: Scalar> ScreenMapping<S> {
     /// The view ray through screen point (x, y), or `None` on overflow.
     fn ray(&self, x: S, y: S) -> Option<Vec3<S>> {
         Some(Vec3::new(
-            x.checked_sub(self.centre.x)?.checked_div(self.focus)?,
-            y.checked_sub(self.centre.y)?.checked_div(self.focus)?,
+            x.checked_sub(self.center.x)?.checked_div(self.focus)?,
+            y.checked_sub(self.center.y)?.checked_div(self.focus)?,
             S::ONE,
         ))
     }
@@ -299,7 +299,7 @@ impl<S: Scalar> TextureVectors<S> {
 
     /// The per-pixel perspective mapping ([`ScreenMapping`]) for a
     /// perspective projection with focus distance `focus` (pixels) about
-    /// screen point `centre` (see [`Projection`](crate::camera::Projection)):
+    /// screen point `center` (see [`Projection`](crate::camera::Projection)):
     /// with `N = U×V`, `A = V×P`, `B = P×U` and the view ray `D`,
     /// `u = D·A / D·N` and `v = D·B / D·N`.
     ///
@@ -310,7 +310,7 @@ impl<S: Scalar> TextureVectors<S> {
     /// Returns `None` if U and V are zero or parallel, a value overflows
     /// (fixed point) or `focus` is not positive.
     #[must_use]
-    pub fn screen_mapping(&self, focus: S, centre: Vec2<S>) -> Option<ScreenMapping<S>> {
+    pub fn screen_mapping(&self, focus: S, center: Vec2<S>) -> Option<ScreenMapping<S>> {
         if focus.partial_cmp(&S::ZERO) != Some(core::cmp::Ordering::Greater) {
             return None;
         }
@@ -347,7 +347,7 @@ impl<S: Scalar> TextureVectors<S> {
             b,
             n: div(n, m2)?,
             k,
-            centre,
+            center,
             focus,
         })
     }

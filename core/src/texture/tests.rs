@@ -137,7 +137,7 @@ fn polygon_recovers_random_mappings<S: Scalar>() {
             Err(e) => panic!("case {case}: {e}"),
         };
         // Compare the mapping where it matters: at the vertices and the
-        // centre of the texture region.
+        // center of the texture region.
         for &(u, v) in uv.iter().chain([(u0, v0)].iter()) {
             let e = dist(
                 f64v(got.point(S::from_f64(u), S::from_f64(v))),
@@ -228,7 +228,7 @@ fn errors_display_and_chain() {
 }
 
 /// The per-pixel mapping against an f64 reference: the view ray through
-/// the pixel centre meets the triangle's plane, and barycentric
+/// the pixel center meets the triangle's plane, and barycentric
 /// coordinates of that point interpolate (u, v).
 fn screen_mapping_matches_reference<S: Scalar>() {
     let mut rng = Rng::new(0x5c4e);

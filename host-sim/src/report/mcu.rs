@@ -30,7 +30,7 @@ const TABLES_MD: &str = include_str!("../../../docs/mcu/tables.md");
 /// `affine`, ... as in `docs/mcu/tables.md`'s per-pixel table): the scan
 /// converter's inner loop on a large quad, without the per-polygon and
 /// per-row set-up, and independent of the pipeline's scalar (the
-/// rasteriser is integer). A gap if the table has no such row.
+/// rasterizer is integer). A gap if the table has no such row.
 pub fn lookup_span(mode: &'static str) -> McuCell {
     match row_numbers(TABLES_MD, &format!("| {mode} |"), 2) {
         Some(cells) => McuCell::Measured {

@@ -16,7 +16,7 @@ pub struct MixedAffine {
     pub t: [i32; 3],
 }
 
-fn quantise(x: f64, frac: u32) -> i32 {
+fn quantize(x: f64, frac: u32) -> i32 {
     (x * f64::from(1u32 << frac))
         .round()
         .clamp(i32::MIN as f64, i32::MAX as f64) as i32
@@ -24,7 +24,7 @@ fn quantise(x: f64, frac: u32) -> i32 {
 
 /// `x` to Q16.16, rounded and saturated.
 pub fn q16(x: f64) -> i32 {
-    quantise(x, 16)
+    quantize(x, 16)
 }
 
 /// Q16.16 to `f64`.
@@ -37,7 +37,7 @@ impl MixedAffine {
     /// translation.
     pub fn from_f64(m: [[f64; 3]; 3], t: [f64; 3]) -> Self {
         Self {
-            m: m.map(|r| r.map(|c| quantise(c, 30))),
+            m: m.map(|r| r.map(|c| quantize(c, 30))),
             t: t.map(q16),
         }
     }

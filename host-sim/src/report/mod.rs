@@ -108,7 +108,7 @@ pub struct Table {
     /// One row per representation.
     pub rows: Vec<Row>,
     /// Plot the mean error instead of the maximum (where the maximum is
-    /// one quantised worst case shared by most rows).
+    /// one quantized worst case shared by most rows).
     pub plot_mean: bool,
     /// What the data supports, written from the rows.
     pub recommendation: String,
@@ -145,7 +145,7 @@ harness has: thumbv6m (Cortex-M0-class, soft float) and thumbv7em-hf (Cortex-M4F
 it has no kernel the cell says so. Instructions are not cycles.
 - **Plots.** One PNG per routine: maximum error (mean error where the table says so) against median host ns/op, both axes \
 logarithmic, one labelled point per row. A row with zero error is drawn at the bottom \
-edge of the plot and its label ends in `(0)`. The grey line joins the Pareto front \
+edge of the plot and its label ends in `(0)`. The gray line joins the Pareto front \
 (rows that no other row beats on both error and time).
 ";
 

@@ -170,7 +170,7 @@ pub fn transform(size: Size) -> Table {
     pending.push(transform_mixed_row(size, &c));
     let rows = finish(size, pending);
     let px = |repr: &str| max_err(&rows, repr) * FOCUS;
-    // Depth from which the error is below the rasteriser's 1/16 px step.
+    // Depth from which the error is below the rasterizer's 1/16 px step.
     let z16 = |repr: &str| px(repr) * 16.0;
     let depth_text = |repr: &str| {
         if z16(repr) <= 1.0 {
@@ -182,7 +182,7 @@ pub fn transform(size: Size) -> Table {
     let recommendation = format!(
         "A view-space error e moves a vertex by at most 120·e/z px in a 240×240 view with \
          focus 120 px. I16F16 transforms stay within {} units, i.e. {} px at z = 1 and below \
-         the rasteriser's 1/16 px sub-pixel step {}; that costs {} instructions/vertex on \
+         the rasterizer's 1/16 px sub-pixel step {}; that costs {} instructions/vertex on \
          Cortex-M0 class cores (thumbv6m), where soft-float f32 costs {} ({}× more). On a \
          Cortex-M4F, f32 is both the more accurate (error {}) and the cheaper ({} against {} \
          instructions for I16F16). The mixed Q2.30×Q16.16 scheme cuts the I16F16 error \
@@ -292,8 +292,8 @@ pub fn projection(size: Size) -> Table {
     let rows = finish(size, per_scalar!(projection_row(size, &pts)));
     let recommendation = format!(
         "Projection divides by z, so fixed point loses relative precision for near, \
-         off-centre points: I16F16 is within {} px of f64 (mean {} px), I20F12 within {} px, \
-         f32 within {} px. All four are below the rasteriser's 1/16 px sub-pixel step \
+         off-center points: I16F16 is within {} px of f64 (mean {} px), I20F12 within {} px, \
+         f32 within {} px. All four are below the rasterizer's 1/16 px sub-pixel step \
          ({}), so for a 240×240 display the projection does not decide the scalar; the \
          transform and camera set-up before it do.",
         g(max_err(&rows, "I16F16")),

@@ -161,13 +161,13 @@ struct PolyScene {
 
 fn poly_scene(size: Size) -> PolyScene {
     // A convex hexagon of radius 20, tilted, around (5, −3, −60).
-    let centre = Vec3::new(5.0, -3.0, -60.0);
+    let center = Vec3::new(5.0, -3.0, -60.0);
     let e1 = Vec3::new(1.0, 0.2, 0.3).normalize();
     let e2 = e1.cross(Vec3::new(0.1, 0.4, 1.0)).normalize();
     let verts: Vec<Vec3<f64>> = (0..6)
         .map(|k| {
             let a = std::f64::consts::TAU * k as f64 / 6.0 + 0.1;
-            centre + e1 * (20.0 * a.cos()) + e2 * (20.0 * a.sin())
+            center + e1 * (20.0 * a.cos()) + e2 * (20.0 * a.sin())
         })
         .collect();
     let mut rng = Rng::new(12);
@@ -179,7 +179,7 @@ fn poly_scene(size: Size) -> PolyScene {
             let along = a + (b - a) * rng.range(0.1, 0.9);
             // Inward normal of edge k within the plane.
             let inward = n.cross(b - a).normalize();
-            let inward = if inward.dot(centre - along) > 0.0 {
+            let inward = if inward.dot(center - along) > 0.0 {
                 inward
             } else {
                 -inward
@@ -358,7 +358,7 @@ pub fn line_polygon(size: Size) -> Table {
         unit: "misclassification rate (fraction of rays classified against the construction)",
         unit_short: "wrong-classification rate",
         setup: format!(
-            "A tilted convex hexagon (radius 20) centred 60 units from the eye; {} rays from the \
+            "A tilted convex hexagon (radius 20) centered 60 units from the eye; {} rays from the \
              eye through targets on its plane, each at a log-uniform distance in [10⁻⁶, 10⁻¹] \
              inside or outside a random edge (away from the vertices). Reference: the side \
              chosen by construction (exact), not f64. Slab uses `SlabIndex` over the same \
@@ -374,7 +374,7 @@ pub fn line_polygon(size: Size) -> Table {
 // ------------------------------------------------------------- line–sphere
 
 struct SphereCase {
-    centre: Vec3<f64>,
+    center: Vec3<f64>,
     radius: f64,
     origin: Vec3<f64>,
     dir: Vec3<f64>,
@@ -385,18 +385,18 @@ fn sphere_cases(size: Size) -> Vec<SphereCase> {
     (0..size.samples)
         .map(|_| {
             let radius = rng.log_range(1.0, 20.0);
-            let centre = rand_vec(&mut rng, 60.0) + Vec3::new(0.0, 0.0, -80.0);
+            let center = rand_vec(&mut rng, 60.0) + Vec3::new(0.0, 0.0, -80.0);
             let origin = rand_vec(&mut rng, 5.0);
             // Aim at a point of the silhouette disc, up to 0.999 of the
-            // radius off centre (near-grazing rays included).
-            let to_c = (centre - origin).normalize();
+            // radius off center (near-grazing rays included).
+            let to_c = (center - origin).normalize();
             let side = to_c.cross(Vec3::new(0.3, 1.0, 0.2)).normalize();
             let up = to_c.cross(side);
             let r = radius * rng.range(0.0, 0.999).sqrt();
             let a = rng.range(0.0, std::f64::consts::TAU);
-            let target = centre + side * (r * a.cos()) + up * (r * a.sin());
+            let target = center + side * (r * a.cos()) + up * (r * a.sin());
             SphereCase {
-                centre,
+                center,
                 radius,
                 origin,
                 dir: (target - origin).normalize(),
@@ -410,7 +410,7 @@ fn sphere_row<S: Scalar>(size: Size, cases: &[SphereCase]) -> Pending<'static> {
         .iter()
         .filter_map(|c| {
             Some((
-                Sphere::new(v3::<S>(c.centre), S::from_f64(c.radius)).ok()?,
+                Sphere::new(v3::<S>(c.center), S::from_f64(c.radius)).ok()?,
                 Ray::new(v3::<S>(c.origin), v3(c.dir)).ok()?,
             ))
         })
@@ -418,7 +418,7 @@ fn sphere_row<S: Scalar>(size: Size, cases: &[SphereCase]) -> Pending<'static> {
     let mut errs = Vec::new();
     let mut missed = cases.len() - inputs.len();
     for (c, (sp, ray)) in cases.iter().zip(&inputs) {
-        let rs = Sphere::new(c.centre, c.radius).expect("f64 sphere");
+        let rs = Sphere::new(c.center, c.radius).expect("f64 sphere");
         let rr = Ray::new(c.origin, c.dir).expect("f64 ray");
         let Some(tr) = rs.intersect(&rr, 0.0) else {
             continue;
@@ -442,7 +442,7 @@ pub fn line_sphere(size: Size) -> Table {
     let cases = sphere_cases(size);
     let rows = finish(size, per_scalar!(sphere_row(size, &cases)));
     let recommendation = format!(
-        "Rays aimed anywhere on the silhouette, up to 0.999 of the radius off centre, where \
+        "Rays aimed anywhere on the silhouette, up to 0.999 of the radius off center, where \
          the hit point is most sensitive to the direction: f32 is within {} units, I16F16 \
          within {} and I20F12 within {} of the f64 hit ({} / {} / {} ns/op on the host). The near-grazing rays set the \
          maxima: 99% of I16F16 hits are within {} units (f32: {}), enough for shading a \
@@ -463,7 +463,7 @@ pub fn line_sphere(size: Size) -> Table {
         unit: "world units: |hit point − f64 hit point|",
         unit_short: "world units",
         setup: format!(
-            "{} spheres of radius log-uniform in [1, 20] centred within ±60 of (0, 0, −80); \
+            "{} spheres of radius log-uniform in [1, 20] centered within ±60 of (0, 0, −80); \
              rays from within ±5 of the origin (unit direction) aimed at a uniform point of \
              the sphere's silhouette disc out to 0.999 of its radius. Reference: the f64 hit.",
             cases.len()

@@ -45,18 +45,18 @@ fn tv_cases(size: Size) -> Vec<TvCase> {
     while out.len() < (size.samples / 16).max(8) {
         // Texture frame: origin P and texel steps U, V (not orthogonal).
         let z = rng.log_range(2.0, 20.0);
-        let centre = Vec3::new(rng.range(-0.4, 0.4) * z, rng.range(-0.4, 0.4) * z, z);
+        let center = Vec3::new(rng.range(-0.4, 0.4) * z, rng.range(-0.4, 0.4) * z, z);
         let ext = rng.range(1.0, 5.0);
         let e1 = rand_vec(&mut rng, 1.0).normalize();
         let e2 = (rand_vec(&mut rng, 1.0) - e1 * 0.0).normalize();
         let n = e1.cross(e2);
         // Face the camera within ~70°: skip steeper frames.
-        if n.length() < 0.3 || (n.normalize().dot(centre.normalize())).abs() < 0.35 {
+        if n.length() < 0.3 || (n.normalize().dot(center.normalize())).abs() < 0.35 {
             continue;
         }
         let (u_axis, v_axis) = (e1 * (ext / 64.0), e2 * (ext / 64.0));
         let (u0, v0) = (rng.range(0.0, 192.0), rng.range(0.0, 192.0));
-        let p = centre - u_axis * (u0 + 32.0) - v_axis * (v0 + 32.0);
+        let p = center - u_axis * (u0 + 32.0) - v_axis * (v0 + 32.0);
         let corner = [(0.0, 0.0), (64.0, 0.0), (64.0, 64.0), (0.0, 64.0)];
         let uvs = corner.map(|(a, b)| Vec2::new(u0 + a, v0 + b));
         let positions = uvs.map(|t| p + u_axis * t.x + v_axis * t.y);
@@ -78,7 +78,7 @@ fn tv_cases(size: Size) -> Vec<TvCase> {
 
 fn tv_row<S: Scalar>(size: Size, cases: &[TvCase]) -> Pending<'static> {
     let focus = S::from_f64(FOCUS);
-    let centre = Vec2::new(S::from_f64(CX), S::from_f64(CX));
+    let center = Vec2::new(S::from_f64(CX), S::from_f64(CX));
     type In<S> = ([Vec3<S>; 4], [Vec2<S>; 4]);
     let inputs: Vec<In<S>> = cases
         .iter()
@@ -87,7 +87,7 @@ fn tv_row<S: Scalar>(size: Size, cases: &[TvCase]) -> Pending<'static> {
     let setup = move |(pos, uv): &In<S>| {
         TextureVectors::from_polygon(pos, uv)
             .ok()
-            .and_then(|(m, _)| m.screen_mapping(focus, centre))
+            .and_then(|(m, _)| m.screen_mapping(focus, center))
     };
     let mut errs = Vec::new();
     let mut rejected = 0;
@@ -122,7 +122,7 @@ pub fn texture_vectors(size: Size) -> Table {
     let recommendation = format!(
         "The recovered mapping, evaluated per pixel, is within {} texels of the exact (u, v) \
          in f32 and {} texels in I16F16 (I20F12: {}). Half a texel is where nearest sampling \
-         starts picking a neighbouring texel, so {} for 64-texel quads of 1–5 units \
+         starts picking a neighboring texel, so {} for 64-texel quads of 1–5 units \
          at 2–20 units; the setup itself costs {} ns (f32) / {} ns (I16F16) per polygon, once \
          per polygon and frame.",
         g(max_err(&rows, "f32")),
@@ -475,7 +475,7 @@ pub fn texture_mapping(size: Size) -> Table {
     let recommendation = format!(
         "Exact per-pixel division is within {} texel of the exact texel index (mean {}; \
          the I16F16 pipeline shows the same residue, so it comes from the shared integer \
-         rasteriser, with 28.4 vertices and 16.16 varyings, not from the scalar) at {} ns/pixel in f32. \
+         rasterizer, with 28.4 vertices and 16.16 varyings, not from the scalar) at {} ns/pixel in f32. \
          Subdividing every 8 / 16 / 32 pixels raises the maximum to {} / {} / {} texels \
          (means {} / {} / {}) at {} / {} / {} ns/pixel. Affine mapping is off by up to {} \
          texels on the steep floor and wall (128 is the largest difference a 256-texel wrap \
@@ -514,9 +514,9 @@ pub fn texture_mapping(size: Size) -> Table {
                 each drawn as two triangles through `Pipeline::draw_polygon` (clip, project to \
                 28.4, scan-convert) into a u32 frame with a texture whose texels encode their \
                 own (u, v), nearest sampling with wrap. Reference: the texel under each pixel \
-                centre, from an f64 ray–plane intersection (independent of core's mapping \
+                center, from an f64 ray–plane intersection (independent of core's mapping \
                 code). `auto` = `choose_mapping` per triangle (affine, else exact). The f64 \
-                pipeline is left out: the rasteriser's fixed-point varyings, not the scalar, \
+                pipeline is left out: the rasterizer's fixed-point varyings, not the scalar, \
                 set the floor."
             .into(),
         rows,

@@ -58,7 +58,7 @@ impl Timing {
         max: 0.0,
     };
 
-    /// Summarises per-pass figures (at least one).
+    /// Summarizes per-pass figures (at least one).
     pub fn from_samples(mut s: Vec<f64>) -> Self {
         if s.is_empty() {
             s.push(0.0);

@@ -106,9 +106,9 @@ pub enum ProjectionDef {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(rename = "material", deny_unknown_fields)]
 pub enum MaterialDef {
-    /// Flat colour.
+    /// Flat color.
     Flat(Rgb),
-    /// Gouraud colour.
+    /// Gouraud color.
     Gouraud(Rgb),
     /// A PNG texture (sides powers of two) and a mode.
     Texture {
@@ -152,13 +152,14 @@ fn one() -> f32 {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(rename = "sphere", deny_unknown_fields)]
 pub struct SphereDef {
-    /// Centre.
-    #[serde(deserialize_with = "finite3")]
-    pub centre: [f32; 3],
+    /// Center (files written before the American spelling say `centre`,
+    /// which is still read).
+    #[serde(alias = "centre", deserialize_with = "finite3")]
+    pub center: [f32; 3],
     /// Radius, > 0.
     #[serde(deserialize_with = "positive_radius")]
     pub radius: f32,
-    /// Colour.
+    /// Color.
     pub color: Rgb,
 }
 
@@ -183,7 +184,7 @@ pub struct SceneDef {
     pub far: f32,
     /// Light (core's own type, read through its `serde` feature).
     pub light: Light,
-    /// Background colour.
+    /// Background color.
     #[serde(default)]
     pub background: Rgb,
     /// Objects.

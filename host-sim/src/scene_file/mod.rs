@@ -394,7 +394,7 @@ impl LoadedScene {
             .spheres
             .iter()
             .map(|s| SceneSphere {
-                centre: s.centre,
+                center: s.center,
                 radius: s.radius,
                 color: color(s.color),
             })

@@ -1,14 +1,14 @@
 //! OBJ meshes: a line-by-line check of the text (tobj reports no line
-//! numbers), loading with tobj, and quantisation to core's i16 form with
+//! numbers), loading with tobj, and quantization to core's i16 form with
 //! a check that no triangle collapses.
 
 use super::FileError;
 use std::path::Path;
 
-/// An owned mesh in core's quantised form.
+/// An owned mesh in core's quantized form.
 #[derive(Clone, Debug, Default)]
 pub struct OwnedMesh {
-    /// Quantised positions.
+    /// Quantized positions.
     pub positions: Vec<[i16; 3]>,
     /// World units per step.
     pub scale: f32,
@@ -261,7 +261,7 @@ fn check_obj_text(path: &Path, text: &str) -> Result<(), FileError> {
 }
 
 /// How many triangles have a non-zero area in `f` but zero area in the
-/// quantised `q`.
+/// quantized `q`.
 fn collapsed(f: &[[f32; 3]], q: &[[i16; 3]], tris: &[[u16; 3]]) -> usize {
     tris.iter()
         .filter(|t| {
@@ -282,14 +282,14 @@ fn collapsed(f: &[[f32; 3]], q: &[[i16; 3]], tris: &[[u16; 3]]) -> usize {
         .count()
 }
 
-/// Loads an OBJ file into core's quantised form, with `scale` (> 0)
+/// Loads an OBJ file into core's quantized form, with `scale` (> 0)
 /// applied.
 ///
 /// # Errors
 /// [`FileError`] naming the OBJ file, with the line and column where the
 /// error has one (line 0 otherwise: a tobj error the line check did not
 /// catch, no faces, too many vertices, triangles that collapse when
-/// quantised).
+/// quantized).
 pub fn load_obj(path: &Path, scale: f32) -> Result<OwnedMesh, FileError> {
     let err = |message: String| FileError {
         file: path.to_path_buf(),
@@ -367,8 +367,8 @@ pub fn load_obj(path: &Path, scale: f32) -> Result<OwnedMesh, FileError> {
     let lost = collapsed(&pos, &positions, &triangles);
     if lost > 0 {
         return Err(err(format!(
-            "{lost} of {} triangles collapse when quantised: the largest coordinate {m} forces a step of {step} \
-             (positions are quantised to 30000 steps of the largest coordinate; expected no stray far vertex)",
+            "{lost} of {} triangles collapse when quantized: the largest coordinate {m} forces a step of {step} \
+             (positions are quantized to 30000 steps of the largest coordinate; expected no stray far vertex)",
             triangles.len()
         )));
     }

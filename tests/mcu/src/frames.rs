@@ -14,7 +14,7 @@
 //! - [`fill`]: one fill-rate polygon per span shader, covering all 240 rows
 //!   and the full or half width, filled [`FILL_REPEAT`] times.
 //! - [`Workload`]: W1/W2 (`/work/shared/WORKLOADS.md`) on the built-in
-//!   quantised bunny.
+//!   quantized bunny.
 
 use core::hint::black_box;
 use embedded_graphics::pixelcolor::{IntoStorage, Rgb565, RgbColor};
@@ -235,8 +235,8 @@ fn nearer<const K: usize>(p: &ScreenPolygon<K>, f: u32) -> ScreenPolygon<K> {
 /// [`FRAME_PIXELS`] long), after clearing both. `halve` selects the
 /// half-width quad. Depth modes move the quad one key unit nearer per
 /// fill, so every pixel passes the less-than test every time. Returns the
-/// pixels written by the last fill (counted in the colour buffer against
-/// the cleared colour), or `None` for an unknown mode.
+/// pixels written by the last fill (counted in the color buffer against
+/// the cleared color), or `None` for an unknown mode.
 pub fn fill(mode: &str, halve: bool, color: &mut [Color], depth: &mut [u16]) -> Option<u32> {
     let (w, h) = (WIDTH, HEIGHT);
     let (color, depth) = (&mut color[..FRAME_PIXELS], &mut depth[..FRAME_PIXELS]);
@@ -327,14 +327,14 @@ pub const WORKLOAD_STEP: u32 = 10;
 /// `Vec3` storage [`Workload::new`] needs: positions and normals.
 pub const WORKLOAD_VEC3S: usize = BUNNY_VERTS + BUNNY_TRIANGLES.len();
 
-/// W1/W2 on the built-in quantised bunny (`scene::builtin::BUNNY_*`, the
+/// W1/W2 on the built-in quantized bunny (`scene::builtin::BUNNY_*`, the
 /// same 1839 vertices and 3674 triangles as `data/bunny.obj`, stored as
 /// i16 with 1/2048 unit steps, and its stored unit vertex normals), drawn
 /// through the public prepared-scene API ([`Renderer`], [`PreparedObject`])
-/// as every other caller draws: the mesh is centred on its bounding box
+/// as every other caller draws: the mesh is centered on its bounding box
 /// and scaled so its largest axis spans [−1, 1], as WORKLOADS.md defines;
-/// face normals come from the quantised positions. Camera, pose, culling
-/// (the bunny is closed), light and clears are WORKLOADS.md's; the grey is
+/// face normals come from the quantized positions. Camera, pose, culling
+/// (the bunny is closed), light and clears are WORKLOADS.md's; the gray is
 /// the material model's white scaled by `⌊255·I⌋/255`.
 #[derive(Debug)]
 pub struct Workload<'a, S> {
@@ -342,7 +342,7 @@ pub struct Workload<'a, S> {
     object: [PreparedObject<'a, S>; 1],
 }
 
-/// The workload's grey: `v = floor(255·I)`, RGB565 `(v>>3, v>>2, v>>3)`.
+/// The workload's gray: `v = floor(255·I)`, RGB565 `(v>>3, v>>2, v>>3)`.
 pub fn grey565(v: u8) -> Color {
     Rgb565::new(v >> 3, v >> 2, v >> 3)
 }
@@ -359,7 +359,7 @@ impl<'a, S: Scalar> Workload<'a, S> {
                 hi[a] = hi[a].max(p[a]);
             }
         }
-        // Centre and half-extent in quantisation steps (exact in f32).
+        // Center and half-extent in quantization steps (exact in f32).
         let c: [f32; 3] = core::array::from_fn(|a| (lo[a] as f32 + hi[a] as f32) * 0.5);
         let half = (0..3)
             .map(|a| (hi[a] as f32 - lo[a] as f32) * 0.5)
@@ -419,7 +419,7 @@ impl<'a, S: Scalar> Workload<'a, S> {
     }
 
     /// Renders frame `k` of [`WORKLOAD_TURN`] into whole-frame buffers
-    /// (colour cleared to the background by the draw, depth cleared here),
+    /// (color cleared to the background by the draw, depth cleared here),
     /// with `scratch` (at least [`BUNNY_VERTS`]) for the projected
     /// vertices. Returns the triangles drawn.
     pub fn frame(

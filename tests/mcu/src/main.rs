@@ -217,7 +217,7 @@ static mut SCRATCH: [MeshVertex<1>; VERTICES] = [MeshVertex {
     screen: sightline::raster::ScreenVertex::new(0, 0, 0, [0]),
 }; VERTICES];
 
-/// The whole-frame colour and depth buffers (in .bss, not on the stack).
+/// The whole-frame color and depth buffers (in .bss, not on the stack).
 fn frame_buffers() -> (&'static mut [Color], &'static mut [u16]) {
     // SAFETY: called once per run (each command takes them at most once),
     // single-threaded, no interrupts touch them.

@@ -291,7 +291,7 @@ mod riscv {
     extern "C" fn rmain() -> ! {
         let h = super::render();
         // SAFETY: a write to a static the linker keeps (the result must
-        // not be optimised away).
+        // not be optimized away).
         unsafe { core::ptr::write_volatile(core::ptr::addr_of_mut!(RESULT), h) };
         loop {
             core::hint::spin_loop();

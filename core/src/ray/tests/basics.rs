@@ -86,7 +86,7 @@ fn plane_from_points<S: Scalar>() {
 }
 
 /// The ray for pixel (i, j) passes through every world point the raster
-/// path projects to the centre of that pixel, for the same camera.
+/// path projects to the center of that pixel, for the same camera.
 fn camera_rays_match_projection<S: Scalar>() {
     let mut rng = Rng::new(5);
     let (w, h) = (64u16, 48u16);
@@ -127,7 +127,7 @@ fn camera_rays_match_projection<S: Scalar>() {
                 S::NAME
             );
         }
-        // Column rays lie on the horizon row through the projection centre.
+        // Column rays lie on the horizon row through the projection center.
         for (i, r) in rc.column_rays() {
             let r = r.unwrap();
             let view = cam.world_to_view().transform_point3(r.at(S::from_f64(0.1)));
@@ -244,7 +244,7 @@ fn extreme_inputs_never_panic_or_nan<S: Scalar>() {
 /// parallel to it) never hit. The normal n is an integer vector of
 /// generic direction, the direction is d = n × w and the origin
 /// P + n × w₂ for integer w, w₂, all exactly representable in every type;
-/// n·d = 0 is checked in i128. Normalising n rounds, so n̂·d is not 0.
+/// n·d = 0 is checked in i128. Normalizing n rounds, so n̂·d is not 0.
 fn plane_exactly_in_plane_rays_miss<S: Scalar>() {
     let mut rng = Rng::new(0x1A_B1A7);
     let cross = |a: [i64; 3], b: [i64; 3]| {

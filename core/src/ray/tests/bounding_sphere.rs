@@ -57,23 +57,23 @@ fn from_points_contains_and_matches_f64<S: Scalar>() {
     for case in 0..300 {
         let n = 1 + case % 97;
         let spread = [0.01, 1.0, 50.0][case % 3];
-        let centre = [rng.range(-50.0, 50.0), rng.range(-50.0, 50.0), 0.0];
+        let center = [rng.range(-50.0, 50.0), rng.range(-50.0, 50.0), 0.0];
         let pts: Vec<Vec3<S>> = (0..n)
             .map(|i| {
                 if case % 7 == 0 && i % 2 == 1 {
                     // Duplicates and collinear points.
-                    v3(centre[0] + i as f64 * spread, centre[1], centre[2])
+                    v3(center[0] + i as f64 * spread, center[1], center[2])
                 } else {
                     v3(
-                        centre[0] + rng.range(-spread, spread),
-                        centre[1] + rng.range(-spread, spread),
-                        centre[2] + rng.range(-spread, spread),
+                        center[0] + rng.range(-spread, spread),
+                        center[1] + rng.range(-spread, spread),
+                        center[2] + rng.range(-spread, spread),
                     )
                 }
             })
             .collect();
         let b = BoundingSphere::from_points(&pts).unwrap();
-        let (c, r) = (to_f64(b.centre()), b.radius().to_f64());
+        let (c, r) = (to_f64(b.center()), b.radius().to_f64());
         for p in &pts {
             let d = d2(to_f64(*p), c).sqrt();
             assert!(
@@ -85,7 +85,7 @@ fn from_points_contains_and_matches_f64<S: Scalar>() {
         let held: Vec<P> = pts.iter().map(|&p| to_f64(p)).collect();
         let (c64, r64) = ritter_f64(&held);
         // Same algorithm, so the same sphere up to the scalar's rounding of
-        // distances and the centre (a few ulps of the coordinates' size).
+        // distances and the center (a few ulps of the coordinates' size).
         let scale = held.iter().flatten().fold(1.0f64, |m, x| m.max(x.abs()));
         let tol = 64.0 * eps * scale * (n as f64).sqrt();
         assert!(
@@ -93,7 +93,7 @@ fn from_points_contains_and_matches_f64<S: Scalar>() {
             "{} case {case}: r {r} vs {r64}",
             S::NAME
         );
-        assert!(d2(c, c64).sqrt() <= tol, "{} case {case}: centre", S::NAME);
+        assert!(d2(c, c64).sqrt() <= tol, "{} case {case}: center", S::NAME);
     }
 }
 
@@ -123,7 +123,7 @@ fn errors<S: Scalar>() {
     // One point: radius of a few ulps, the point inside.
     let p = v3::<S>(1.5, -2.0, 3.25);
     let b = BoundingSphere::from_points(&[p]).unwrap();
-    assert_eq!(b.centre(), p);
+    assert_eq!(b.center(), p);
     assert!(b.radius() > S::ZERO && b.radius().to_f64() < 1e-3);
 }
 
@@ -163,7 +163,7 @@ fn ray_test_is_conservative_and_tight<S: Scalar>() {
         let (q, d, c, r) = (
             to_f64(ray.origin()),
             to_f64(ray.dir()),
-            to_f64(b.centre()),
+            to_f64(b.center()),
             b.radius().to_f64(),
         );
         let dl = d2(d, [0.0; 3]).sqrt();

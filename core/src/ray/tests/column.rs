@@ -65,12 +65,12 @@ fn art(px: &[u8], w: usize) -> String {
 ///   y side, at t = 1.5/|s| = 1.6, 1.846, 2.182; the others the x = 4
 ///   wall, an x side, at t = 2.5 for all of them (no fisheye).
 /// - Half heights f/(2t) = 2.5, 2.167, 1.833, 1.6 around c_y = 6: rows
-///   whose centres lie in [6 − h, 6 + h) are wall: rows 3–7 for columns 0
+///   whose centers lie in [6 − h, 6 + h) are wall: rows 3–7 for columns 0
 ///   and 15 (the top 3.5 is included), rows 4–7 for the others.
 /// - u: the fraction along the face (y on the x = 4 wall; x on the row-0
 ///   wall; 1 − x on the row-4 wall, seen from its front), ×2 texels:
 ///   e.g. column 5 meets x = 4 at y = 2.5 − 2.5·0.3125 = 1.72 → u = 1.
-/// - v: (row centre − top)/(bottom − top), ×2 texels: the top two wall
+/// - v: (row center − top)/(bottom − top), ×2 texels: the top two wall
 ///   rows of every column use texture row 0, the bottom two row 1.
 fn ascii_frame<S: Scalar>() {
     let cam = ColumnCamera::<S>::at_start(&ROOM, S::from_i32(8), 16, 12).unwrap();
@@ -245,7 +245,7 @@ fn no_fisheye<S: Scalar>() {
     .unwrap();
     let mut cols = vec![Column::EMPTY; 64];
     cast_columns(&map, &cam, &mut cols).unwrap();
-    let centre = cols[32];
+    let center = cols[32];
     let tol = S::EPSILON.to_f64() * 256.0;
     for (i, c) in cols.iter().enumerate() {
         let hit = c.hit.unwrap();
@@ -258,11 +258,11 @@ fn no_fisheye<S: Scalar>() {
             hit.distance.to_f64()
         );
         // Equal extents to within one 24.8 step (the distance's rounding).
-        assert!((c.top - centre.top).abs() <= 1, "column {i}");
-        assert!((c.bottom - centre.bottom).abs() <= 1, "column {i}");
+        assert!((c.top - center.top).abs() <= 1, "column {i}");
+        assert!((c.bottom - center.bottom).abs() <= 1, "column {i}");
     }
-    // And the extent is f/(2t) = 32/3.4 rows on each side of the centre.
-    let half = (centre.bottom - centre.top) as f64 / 512.0;
+    // And the extent is f/(2t) = 32/3.4 rows on each side of the center.
+    let half = (center.bottom - center.top) as f64 / 512.0;
     assert!((half - 32.0 / 3.4).abs() < 2.0 / 256.0, "half {half}");
 }
 

@@ -225,8 +225,8 @@ fn mailbox_tests_each_primitive_once<S: Scalar>() {
         },
     ];
     let boxes = [
-        Aabb::around_sphere(big.centre(), big.radius()),
-        Aabb::around_sphere(small.centre(), small.radius()),
+        Aabb::around_sphere(big.center(), big.radius()),
+        Aabb::around_sphere(small.center(), small.radius()),
     ];
     let mut starts = vec![0u32; 16 * 16 * 16 + 1];
     let mut items = vec![0u32; 8192];

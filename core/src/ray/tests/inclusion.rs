@@ -829,12 +829,12 @@ fn lattice_errors<S: Scalar>(l: &Lattice) -> [[usize; 4]; 4] {
             let (mut ys, mut starts, mut edges) =
                 (vec![S::ZERO; n], vec![0u32; n], vec![0u32; n * (n - 1)]);
             let slabs = SlabIndex::build(&poly, &mut ys, &mut starts, &mut edges).expect("sized");
-            let mut centres = pts.clone();
+            let mut centers = pts.clone();
             for i in 0..n {
                 let (a, b) = (pts[i], pts[(i + 1) % n]);
-                centres.push(((a.0 + b.0) / 2, (a.1 + b.1) / 2));
+                centers.push(((a.0 + b.0) / 2, (a.1 + b.1) / 2));
             }
-            for c in centres {
+            for c in centers {
                 for dx in -G..=G {
                     for dy in -G..=G {
                         let p = (c.0 + dx, c.1 + dy);

@@ -121,12 +121,12 @@ fn run_mesh<S: Scalar>(
                 }
             }
         }
-        let centre = m.transform_point3(Vec3::ZERO);
+        let center = m.transform_point3(Vec3::ZERO);
         // Sanity: aimed at face interiors, both methods always hit.
         for t in tris {
             let g = (verts[t[0] as usize] + verts[t[1] as usize] + verts[t[2] as usize])
                 * S::from_f64(1.0 / 3.0);
-            let ray = Ray::through(centre, g).unwrap();
+            let ray = Ray::through(center, g).unwrap();
             assert!(mesh.intersect(&ray, S::ZERO).is_some());
             assert!(polys.iter().any(|p| p.intersect(&ray, S::ZERO).is_some()));
             for test in [InclusionTest::HalfPlane, InclusionTest::Fan] {
@@ -160,7 +160,7 @@ fn run_mesh<S: Scalar>(
         }
         for (i, &(target, at_vertex)) in targets.iter().enumerate() {
             let origin = if i % 4 == 0 {
-                centre
+                center
             } else {
                 let o = 0.3 * scale;
                 m.transform_point3(v3(rng.range(-o, o), rng.range(-o, o), rng.range(-o, o)))

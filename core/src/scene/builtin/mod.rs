@@ -358,17 +358,17 @@ static SPHERES_OBJECTS: [SceneObject<'static>; 1] = [SceneObject {
 
 static SPHERE_LIST: [SceneSphere; 3] = [
     SceneSphere {
-        centre: [-1.6, 0.8, 0.0],
+        center: [-1.6, 0.8, 0.0],
         radius: 0.8,
         color: Color::new(31, 16, 8),
     },
     SceneSphere {
-        centre: [0.4, 1.0, -1.0],
+        center: [0.4, 1.0, -1.0],
         radius: 1.0,
         color: Color::new(8, 40, 31),
     },
     SceneSphere {
-        centre: [1.6, 0.5, 1.0],
+        center: [1.6, 0.5, 1.0],
         radius: 0.5,
         color: Color::new(31, 60, 8),
     },

@@ -52,7 +52,7 @@ pub struct RayTriangle<S> {
 }
 
 impl<S: Scalar> RayTriangle<S> {
-    /// A placeholder, to initialise storage.
+    /// A placeholder, to initialize storage.
     pub const EMPTY: Self = Self {
         triangle: Triangle::new(Vec3::ZERO, Vec3::ZERO, Vec3::ZERO),
     };

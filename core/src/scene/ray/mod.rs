@@ -1,6 +1,6 @@
-//! The ray path: one ray per pixel centre, nearest hit over the scene's
+//! The ray path: one ray per pixel center, nearest hit over the scene's
 //! meshes (watertight triangle test) and spheres, shaded **at the hit**
-//! with the material model the raster path uses too (colour ramp, texel
+//! with the material model the raster path uses too (color ramp, texel
 //! fetch), but none of its interpolation.
 //!
 //! Each ray is carried into each object's space (the inverse pose) and
@@ -18,7 +18,7 @@
 //! (u, v, w) from the watertight test:
 //! - flat: the face normal, lit ([`Material::Flat`]);
 //! - Gouraud: `I = u·I_A + v·I_B + w·I_C` from the vertex intensities,
-//!   then quantised;
+//!   then quantized;
 //! - texture: `(s, t) = u·uv_A + v·uv_B + w·uv_C` in texels, floored and
 //!   fetched. For a planar triangle this is exactly the texture-mapping
 //!   vectors' value at the hit point (the mapping is affine in object
@@ -96,8 +96,8 @@ pub struct RayScene<'a, S> {
     grids: heapless::Vec<Option<grid::ObjectGrid<'a, S>>, MAX_RAY_OBJECTS>,
 }
 
-/// What the ray through a pixel sees, before the colour is looked up:
-/// which surface, and the material model's input there. The colour is
+/// What the ray through a pixel sees, before the color is looked up:
+/// which surface, and the material model's input there. The color is
 /// [`RayScene::color`] of it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
@@ -108,7 +108,7 @@ pub enum RaySample {
     Sphere {
         /// Sphere index in the scene.
         sphere: usize,
-        /// The quantised intensity `⌊255·I⌋`.
+        /// The quantized intensity `⌊255·I⌋`.
         level: u8,
     },
     /// A flat or Gouraud triangle of object `object`, lit at intensity
@@ -116,7 +116,7 @@ pub enum RaySample {
     Lit {
         /// Object index in the scene.
         object: usize,
-        /// The quantised intensity `⌊255·I⌋`.
+        /// The quantized intensity `⌊255·I⌋`.
         level: u8,
     },
     /// A textured triangle of object `object`, showing texel
@@ -176,7 +176,7 @@ impl<'a, S: Scalar> RayScene<'a, S> {
         let mut spheres = heapless::Vec::new();
         #[cfg(feature = "sphere")]
         for (k, s) in scene.spheres.iter().enumerate() {
-            let sp = Sphere::new(vec3(s.centre), S::from_f32(s.radius))
+            let sp = Sphere::new(vec3(s.center), S::from_f32(s.radius))
                 .map_err(|_| SceneError::BadSphere { sphere: k })?;
             spheres.push(sp).map_err(|_| SceneError::TooManyObjects)?;
         }
@@ -205,7 +205,7 @@ impl<'a, S: Scalar> RayScene<'a, S> {
         self.camera.height
     }
 
-    /// The ray through the centre of pixel (i, j), with its direction
+    /// The ray through the center of pixel (i, j), with its direction
     /// scaled by 1/focus (about unit length: keeps fixed point in range).
     #[must_use]
     pub fn pixel_ray(&self, i: u16, j: u16) -> Option<Ray<S>> {
@@ -215,13 +215,13 @@ impl<'a, S: Scalar> RayScene<'a, S> {
         Ray::new(self.camera.viewer, d).ok()
     }
 
-    /// The colour of pixel (i, j).
+    /// The color of pixel (i, j).
     #[must_use]
     pub fn pixel(&self, i: u16, j: u16) -> Color {
         self.color(self.pixel_sample(i, j))
     }
 
-    /// What the ray of pixel (i, j) sees ([`Self::pixel`] is its colour).
+    /// What the ray of pixel (i, j) sees ([`Self::pixel`] is its color).
     #[must_use]
     pub fn pixel_sample(&self, i: u16, j: u16) -> RaySample {
         match self.pixel_ray(i, j) {
@@ -264,7 +264,7 @@ impl<'a, S: Scalar> RayScene<'a, S> {
         self.color(self.sample(ray))
     }
 
-    /// The colour the material model gives `sample` (the background for a
+    /// The color the material model gives `sample` (the background for a
     /// sample that names no surface of this scene).
     #[must_use]
     pub fn color(&self, sample: RaySample) -> Color {

@@ -3,7 +3,7 @@
 //! Renders the built-in Gouraud-lit bunny ([`sightline::scene::builtin::BUNNY`])
 //! in I16F16 fixed point (the RP2040's Cortex-M0+ has no FPU), turning it a
 //! little every frame. The frame is drawn in strips of [`BAND_ROWS`] rows:
-//! each strip is rendered into a small colour band and a matching depth
+//! each strip is rendered into a small color band and a matching depth
 //! band, then pushed to the display's window for those rows. RAM for the
 //! picture is 240·16·(2 + 2) bytes = 15 KiB instead of 225 KiB for a whole
 //! frame with depth.

@@ -48,12 +48,29 @@ impl<S: Scalar> Hit<S> for Sphere<S> {
     }
 }
 
-/// One ray case: a primitive, and a ray from `origin` along the unit
-/// `dir` aimed at it, built in any representation.
+/// A ray from `origin` along the unit `dir`.
+#[derive(Clone, Copy)]
+struct Aim {
+    origin: Vec3<f64>,
+    dir: Vec3<f64>,
+}
+
+impl Aim {
+    /// The ray from `origin` towards `target`.
+    fn at(origin: Vec3<f64>, target: Vec3<f64>) -> Self {
+        Self {
+            origin,
+            dir: (target - origin).normalize(),
+        }
+    }
+}
+
+/// One ray case: a primitive, and a ray aimed at it, built in any
+/// representation.
 trait RayCase {
     type Prim<S: Scalar>: Hit<S> + 'static;
     fn prim<S: Scalar>(&self) -> Option<Self::Prim<S>>;
-    fn ray(&self) -> (Vec3<f64>, Vec3<f64>);
+    fn aim(&self) -> Aim;
     /// What the note says about the case with the largest error.
     fn worst_note(&self) -> Option<String> {
         None
@@ -66,8 +83,8 @@ fn ray_row<S: Scalar>(size: Size, cases: &[impl RayCase]) -> Pending<'static> {
     let inputs: Vec<_> = cases
         .iter()
         .filter_map(|c| {
-            let (o, d) = c.ray();
-            Some((c.prim::<S>()?, Ray::new(v3::<S>(o), v3(d)).ok()?))
+            let a = c.aim();
+            Some((c.prim::<S>()?, Ray::new(v3::<S>(a.origin), v3(a.dir)).ok()?))
         })
         .collect();
     let mut errs = Vec::new();
@@ -75,8 +92,8 @@ fn ray_row<S: Scalar>(size: Size, cases: &[impl RayCase]) -> Pending<'static> {
     let mut worst = (0.0, None);
     for (c, (pr, ray)) in cases.iter().zip(&inputs) {
         let rp = c.prim::<f64>().expect("f64 primitive");
-        let (o, d) = c.ray();
-        let rr = Ray::new(o, d).expect("f64 ray");
+        let a = c.aim();
+        let rr = Ray::new(a.origin, a.dir).expect("f64 ray");
         let Some(tr) = rp.hit(&rr) else {
             continue;
         };
@@ -106,8 +123,7 @@ fn ray_row<S: Scalar>(size: Size, cases: &[impl RayCase]) -> Pending<'static> {
 struct PlaneCase {
     point: Vec3<f64>,
     normal: Vec3<f64>,
-    origin: Vec3<f64>,
-    dir: Vec3<f64>,
+    aim: Aim,
 }
 
 impl RayCase for PlaneCase {
@@ -115,11 +131,11 @@ impl RayCase for PlaneCase {
     fn prim<S: Scalar>(&self) -> Option<Plane<S>> {
         Plane::new(v3(self.point), v3(self.normal)).ok()
     }
-    fn ray(&self) -> (Vec3<f64>, Vec3<f64>) {
-        (self.origin, self.dir)
+    fn aim(&self) -> Aim {
+        self.aim
     }
     fn worst_note(&self) -> Option<String> {
-        let sin = self.dir.dot(self.normal.normalize()).abs();
+        let sin = self.aim.dir.dot(self.normal.normalize()).abs();
         Some(format!(
             "; worst case {:.2}° from grazing",
             sin.asin().to_degrees()
@@ -139,8 +155,7 @@ fn plane_cases(size: Size) -> Vec<PlaneCase> {
         PlaneCase {
             point,
             normal,
-            origin,
-            dir: (target - origin).normalize(),
+            aim: Aim::at(origin, target),
         }
     })
 }
@@ -414,8 +429,7 @@ pub fn line_polygon(size: Size) -> Table {
 struct SphereCase {
     centre: Vec3<f64>,
     radius: f64,
-    origin: Vec3<f64>,
-    dir: Vec3<f64>,
+    aim: Aim,
 }
 
 impl RayCase for SphereCase {
@@ -423,8 +437,8 @@ impl RayCase for SphereCase {
     fn prim<S: Scalar>(&self) -> Option<Sphere<S>> {
         Sphere::new(v3(self.centre), S::from_f64(self.radius)).ok()
     }
-    fn ray(&self) -> (Vec3<f64>, Vec3<f64>) {
-        (self.origin, self.dir)
+    fn aim(&self) -> Aim {
+        self.aim
     }
 }
 
@@ -444,8 +458,7 @@ fn sphere_cases(size: Size) -> Vec<SphereCase> {
         SphereCase {
             centre,
             radius,
-            origin,
-            dir: (target - origin).normalize(),
+            aim: Aim::at(origin, target),
         }
     })
 }

@@ -90,6 +90,27 @@ impl Row {
     }
 }
 
+impl Row {
+    /// This row paired with its benchmark: `f` over `inputs`, one
+    /// operation per input (the tail every per-representation routine
+    /// shares).
+    pub fn timed<'a, I: 'a, R, F: FnMut(&I) -> R + 'a>(
+        self,
+        size: Size,
+        inputs: Vec<I>,
+        f: F,
+    ) -> Pending<'a> {
+        (self, bench(size, inputs, 1.0, f))
+    }
+}
+
+/// `size.samples` cases drawn by `draw` from a generator seeded with
+/// `seed` (each routine has its own seed, so tables do not share inputs).
+pub fn cases<C>(size: Size, seed: u64, mut draw: impl FnMut(&mut Rng) -> C) -> Vec<C> {
+    let mut rng = Rng::new(seed);
+    (0..size.samples).map(|_| draw(&mut rng)).collect()
+}
+
 /// One routine's table, plot and recommendation.
 #[derive(Clone, Debug)]
 pub struct Table {

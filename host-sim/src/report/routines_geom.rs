@@ -2,7 +2,7 @@
 
 use super::mcu::{self, McuCell, NO_KERNEL};
 use super::mixed::{MixedAffine, from_q16, q16};
-use super::{ErrStats, Pending, Rng, Row, Size, Table, Timing, bench, finish};
+use super::{ErrStats, Pending, Rng, Row, Size, Table, Timing, cases, finish};
 use sightline::camera::{Camera, Projection};
 use sightline::math::{Affine3, Vec3};
 use sightline::scalar::{I16F16, I20F12, Scalar};
@@ -47,10 +47,30 @@ pub(super) fn find<'a>(rows: &'a [Row], repr: &str) -> Option<&'a Row> {
     rows.iter().find(|r| r.repr == repr)
 }
 
+/// The row of representation `S` whose note counts the `rejected` of
+/// `of` inputs as `what` (no note when none was).
+pub(super) fn scalar_row<S: Scalar>(
+    errs: &[f64],
+    mcu: McuCell,
+    rejected: usize,
+    of: usize,
+    what: &str,
+) -> Row {
+    Row::new(S::NAME, errs, mcu, count_note(rejected, of, what))
+}
+
+fn err_of(rows: &[Row], repr: &str, pick: fn(ErrStats) -> f64) -> f64 {
+    find(rows, repr).and_then(|r| r.err).map_or(f64::NAN, pick)
+}
+
+/// The maximum error of the row `repr` (NaN without one).
 pub(super) fn max_err(rows: &[Row], repr: &str) -> f64 {
-    find(rows, repr)
-        .and_then(|r| r.err)
-        .map_or(f64::NAN, |e| e.max)
+    err_of(rows, repr, |e| e.max)
+}
+
+/// The mean error of the row `repr` (NaN without one).
+pub(super) fn mean_err(rows: &[Row], repr: &str) -> f64 {
+    err_of(rows, repr, |e| e.mean)
 }
 
 pub(super) fn ns(rows: &[Row], repr: &str) -> f64 {
@@ -119,14 +139,8 @@ fn transform_row<S: Scalar>(size: Size, c: &TransformCase) -> Pending<'static> {
             )
         })
         .collect();
-    let b = bench(size, pts, 1.0, move |&(i, p)| mats[i].transform_point3(p));
-    let row = Row::new(
-        S::NAME,
-        &errs,
-        mcu::lookup("transform_point3", S::NAME),
-        String::new(),
-    );
-    (row, b)
+    let mcu = mcu::lookup("transform_point3", S::NAME);
+    Row::new(S::NAME, &errs, mcu, "").timed(size, pts, move |&(i, p)| mats[i].transform_point3(p))
 }
 
 fn transform_mixed_row(size: Size, c: &TransformCase) -> Pending<'static> {
@@ -153,14 +167,9 @@ fn transform_mixed_row(size: Size, c: &TransformCase) -> Pending<'static> {
             dist(got, c.mats[i].transform_point3(p))
         })
         .collect();
-    let b = bench(size, pts, 1.0, move |&(i, p)| mats[i].transform(p));
-    let row = Row::new(
-        "Q2.30×Q16.16",
-        &errs,
-        NO_KERNEL,
-        "report-local kernel, i64 accumulation",
-    );
-    (row, b)
+    let note = "report-local kernel, i64 accumulation";
+    Row::new("Q2.30×Q16.16", &errs, NO_KERNEL, note)
+        .timed(size, pts, move |&(i, p)| mats[i].transform(p))
 }
 
 /// Object→view point transform (`Affine3::transform_point3`).
@@ -252,15 +261,12 @@ pub(super) fn mcu_v7em(rows: &[Row], repr: &str) -> String {
 // --------------------------------------------------------------- projection
 
 fn projection_points(size: Size) -> Vec<Vec3<f64>> {
-    let mut rng = Rng::new(2);
-    (0..size.samples)
-        .map(|_| {
-            let z = rng.log_range(1.0, 100.0);
-            let sx = rng.range(0.0, f64::from(VIEW)) - f64::from(VIEW) / 2.0;
-            let sy = rng.range(0.0, f64::from(VIEW)) - f64::from(VIEW) / 2.0;
-            Vec3::new(sx * z / FOCUS, sy * z / FOCUS, z)
-        })
-        .collect()
+    cases(size, 2, |rng| {
+        let z = rng.log_range(1.0, 100.0);
+        let sx = rng.range(0.0, f64::from(VIEW)) - f64::from(VIEW) / 2.0;
+        let sy = rng.range(0.0, f64::from(VIEW)) - f64::from(VIEW) / 2.0;
+        Vec3::new(sx * z / FOCUS, sy * z / FOCUS, z)
+    })
 }
 
 fn projection_row<S: Scalar>(size: Size, pts: &[Vec3<f64>]) -> Pending<'static> {
@@ -276,14 +282,11 @@ fn projection_row<S: Scalar>(size: Size, pts: &[Vec3<f64>]) -> Pending<'static> 
             None => failed += 1,
         }
     }
-    let b = bench(size, ps, 1.0, move |&p| proj.project(p));
-    let row = Row::new(
-        S::NAME,
-        &errs,
-        NO_KERNEL,
-        count_note(failed, pts.len(), "not projected"),
-    );
-    (row, b)
+    scalar_row::<S>(&errs, NO_KERNEL, failed, pts.len(), "not projected").timed(
+        size,
+        ps,
+        move |&p| proj.project(p),
+    )
 }
 
 /// Perspective projection to pixels (`Projection::project`).
@@ -297,9 +300,7 @@ pub fn projection(size: Size) -> Table {
          ({}), so for a 240×240 display the projection does not decide the scalar; the \
          transform and camera set-up before it do.",
         g(max_err(&rows, "I16F16")),
-        g(find(&rows, "I16F16")
-            .and_then(|r| r.err)
-            .map_or(f64::NAN, |e| e.mean)),
+        g(mean_err(&rows, "I16F16")),
         g(max_err(&rows, "I20F12")),
         g(max_err(&rows, "f32")),
         if rows
@@ -417,7 +418,6 @@ fn solver_row<S: Scalar, const N: usize>(
             }
         }
     }
-    let bn = bench(size, inputs, 1.0, |(a, b)| solve(a, b).is_ok());
     let mut note = count_note(rejected, sys.len(), "rejected");
     if !why.is_empty() {
         note.push_str(&format!(" ({})", why.trim()));
@@ -433,7 +433,7 @@ fn solver_row<S: Scalar, const N: usize>(
         },
         note,
     };
-    (row, bn)
+    row.timed(size, inputs, |(a, b)| solve(a, b).is_ok())
 }
 
 const KAPPAS: [f64; 3] = [1e1, 1e3, 1e5];
@@ -564,16 +564,11 @@ fn camera_row<S: Scalar>(size: Size, cases: &[CameraCase]) -> Pending<'static> {
             Err(_) => rejected += 1,
         }
     }
-    let b = bench(size, inputs, 1.0, |&(p, u, v, w)| {
-        Camera::from_vectors(p, u, v, w).is_ok()
-    });
-    let row = Row::new(
-        S::NAME,
-        &errs,
-        NO_KERNEL,
-        count_note(rejected, cases.len(), "rejected"),
-    );
-    (row, b)
+    scalar_row::<S>(&errs, NO_KERNEL, rejected, cases.len(), "rejected").timed(
+        size,
+        inputs,
+        |&(p, u, v, w)| Camera::from_vectors(p, u, v, w).is_ok(),
+    )
 }
 
 /// The general camera from three vectors, via the solver.

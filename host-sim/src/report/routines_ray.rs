@@ -2,8 +2,10 @@
 //! line–sphere.
 
 use super::mcu::NO_KERNEL;
-use super::routines_geom::{count_note, dist, find, g, max_err, ns, per_scalar, rand_vec, v3};
-use super::{ErrStats, Pending, Rng, Row, Size, Table, Timing, bench, finish};
+use super::routines_geom::{
+    count_note, dist, find, g, max_err, mean_err, ns, per_scalar, rand_vec, v3,
+};
+use super::{ErrStats, Pending, Rng, Row, Size, Table, Timing, bench, cases, finish};
 use sightline::math::Vec3;
 use sightline::ray::{InclusionTest, Plane, Polygon, Ray, SlabIndex, Sphere};
 use sightline::scalar::Scalar;
@@ -29,89 +31,140 @@ fn hit_f64<S: Scalar>(ray: &Ray<S>, t: S) -> Vec3<f64> {
     ray.origin().cast::<f64>() + ray.dir().cast::<f64>() * t.to_f64()
 }
 
-// -------------------------------------------------------------- line–plane
+/// A primitive a ray can hit at a parameter t > 0.
+trait Hit<S> {
+    fn hit(&self, ray: &Ray<S>) -> Option<S>;
+}
 
-struct PlaneCase {
-    point: Vec3<f64>,
-    normal: Vec3<f64>,
+impl<S: Scalar> Hit<S> for Plane<S> {
+    fn hit(&self, ray: &Ray<S>) -> Option<S> {
+        self.intersect(ray, S::ZERO)
+    }
+}
+
+impl<S: Scalar> Hit<S> for Sphere<S> {
+    fn hit(&self, ray: &Ray<S>) -> Option<S> {
+        self.intersect(ray, S::ZERO)
+    }
+}
+
+/// A ray from `origin` along the unit `dir`.
+#[derive(Clone, Copy)]
+struct Aim {
     origin: Vec3<f64>,
     dir: Vec3<f64>,
 }
 
-fn plane_cases(size: Size) -> Vec<PlaneCase> {
-    let mut rng = Rng::new(11);
-    (0..size.samples)
-        .map(|_| {
-            let point = rand_vec(&mut rng, 50.0);
-            let normal = rand_vec(&mut rng, 1.0);
-            let origin = rand_vec(&mut rng, 10.0);
-            // A target on the plane: the point plus an in-plane offset.
-            let off = rand_vec(&mut rng, 40.0);
-            let nn = normal.normalize();
-            let target = point + off - nn * off.dot(nn);
-            PlaneCase {
-                point,
-                normal,
-                origin,
-                dir: (target - origin).normalize(),
-            }
-        })
-        .collect()
+impl Aim {
+    /// The ray from `origin` towards `target`.
+    fn at(origin: Vec3<f64>, target: Vec3<f64>) -> Self {
+        Self {
+            origin,
+            dir: (target - origin).normalize(),
+        }
+    }
 }
 
-fn plane_row<S: Scalar>(size: Size, cases: &[PlaneCase]) -> Pending<'static> {
+/// One ray case: a primitive, and a ray aimed at it, built in any
+/// representation.
+trait RayCase {
+    type Prim<S: Scalar>: Hit<S> + 'static;
+    fn prim<S: Scalar>(&self) -> Option<Self::Prim<S>>;
+    fn aim(&self) -> Aim;
+    /// What the note says about the case with the largest error.
+    fn worst_note(&self) -> Option<String> {
+        None
+    }
+}
+
+/// The row of representation `S` for a line–primitive table: hit points
+/// against the f64 hits, the 99th percentile and misses in the note.
+fn ray_row<S: Scalar>(size: Size, cases: &[impl RayCase]) -> Pending<'static> {
     let inputs: Vec<_> = cases
         .iter()
         .filter_map(|c| {
-            Some((
-                Plane::new(v3::<S>(c.point), v3(c.normal)).ok()?,
-                Ray::new(v3::<S>(c.origin), v3(c.dir)).ok()?,
-            ))
+            let a = c.aim();
+            Some((c.prim::<S>()?, Ray::new(v3::<S>(a.origin), v3(a.dir)).ok()?))
         })
         .collect();
     let mut errs = Vec::new();
     let mut missed = cases.len() - inputs.len();
-    // (error, angle between ray and plane in degrees) of the worst case.
-    let mut worst = (0.0f64, 90.0f64);
-    for (c, (pl, ray)) in cases.iter().zip(&inputs) {
-        let rp = Plane::new(c.point, c.normal).expect("f64 plane");
-        let rr = Ray::new(c.origin, c.dir).expect("f64 ray");
-        let Some(tr) = rp.intersect(&rr, 0.0) else {
+    let mut worst = (0.0, None);
+    for (c, (pr, ray)) in cases.iter().zip(&inputs) {
+        let rp = c.prim::<f64>().expect("f64 primitive");
+        let a = c.aim();
+        let rr = Ray::new(a.origin, a.dir).expect("f64 ray");
+        let Some(tr) = rp.hit(&rr) else {
             continue;
         };
-        match pl.intersect(ray, S::ZERO) {
+        match pr.hit(ray) {
             Some(t) => {
                 let e = dist(hit_f64(ray, t), rr.at(tr));
                 if e > worst.0 {
-                    let sin = c.dir.dot(c.normal.normalize()).abs();
-                    worst = (e, sin.asin().to_degrees());
+                    worst = (e, Some(c));
                 }
                 errs.push(e);
             }
             None => missed += 1,
         }
     }
-    let b = bench(size, inputs, 1.0, |(pl, ray)| pl.intersect(ray, S::ZERO));
     let mut note = format!("p99 {}", super::markdown::num(p99(&errs)));
-    if worst.0 > 0.0 {
-        note.push_str(&format!("; worst case {:.2}° from grazing", worst.1));
+    if let Some(w) = worst.1.and_then(RayCase::worst_note) {
+        note.push_str(&w);
     }
     if missed > 0 {
         note.push_str(&format!("; {}", count_note(missed, cases.len(), "missed")));
     }
-    let row = Row::new(S::NAME, &errs, NO_KERNEL, note);
-    (row, b)
+    Row::new(S::NAME, &errs, NO_KERNEL, note).timed(size, inputs, |(pr, ray)| pr.hit(ray))
+}
+
+// -------------------------------------------------------------- line–plane
+
+struct PlaneCase {
+    point: Vec3<f64>,
+    normal: Vec3<f64>,
+    aim: Aim,
+}
+
+impl RayCase for PlaneCase {
+    type Prim<S: Scalar> = Plane<S>;
+    fn prim<S: Scalar>(&self) -> Option<Plane<S>> {
+        Plane::new(v3(self.point), v3(self.normal)).ok()
+    }
+    fn aim(&self) -> Aim {
+        self.aim
+    }
+    fn worst_note(&self) -> Option<String> {
+        let sin = self.aim.dir.dot(self.normal.normalize()).abs();
+        Some(format!(
+            "; worst case {:.2}° from grazing",
+            sin.asin().to_degrees()
+        ))
+    }
+}
+
+fn plane_cases(size: Size) -> Vec<PlaneCase> {
+    cases(size, 11, |rng| {
+        let point = rand_vec(rng, 50.0);
+        let normal = rand_vec(rng, 1.0);
+        let origin = rand_vec(rng, 10.0);
+        // A target on the plane: the point plus an in-plane offset.
+        let off = rand_vec(rng, 40.0);
+        let nn = normal.normalize();
+        let target = point + off - nn * off.dot(nn);
+        PlaneCase {
+            point,
+            normal,
+            aim: Aim::at(origin, target),
+        }
+    })
 }
 
 /// Line–plane intersection (`ray::Plane::intersect`).
 pub fn line_plane(size: Size) -> Table {
     let cases = plane_cases(size);
-    let rows = finish(size, per_scalar!(plane_row(size, &cases)));
-    let mean = |s: &str| {
-        find(&rows, s)
-            .and_then(|r| r.err)
-            .map_or(f64::NAN, |e| e.mean)
-    };
+    let rows = finish(size, per_scalar!(ray_row(size, &cases)));
+    let mean = |s: &str| mean_err(&rows, s);
     let recommendation = format!(
         "The maxima come from rays that meet the plane at a grazing angle (see notes), where \
          the hit point moves by the direction's rounding divided by the angle's sine; the \
@@ -376,71 +429,44 @@ pub fn line_polygon(size: Size) -> Table {
 struct SphereCase {
     center: Vec3<f64>,
     radius: f64,
-    origin: Vec3<f64>,
-    dir: Vec3<f64>,
+    aim: Aim,
+}
+
+impl RayCase for SphereCase {
+    type Prim<S: Scalar> = Sphere<S>;
+    fn prim<S: Scalar>(&self) -> Option<Sphere<S>> {
+        Sphere::new(v3(self.center), S::from_f64(self.radius)).ok()
+    }
+    fn aim(&self) -> Aim {
+        self.aim
+    }
 }
 
 fn sphere_cases(size: Size) -> Vec<SphereCase> {
-    let mut rng = Rng::new(13);
-    (0..size.samples)
-        .map(|_| {
-            let radius = rng.log_range(1.0, 20.0);
-            let center = rand_vec(&mut rng, 60.0) + Vec3::new(0.0, 0.0, -80.0);
-            let origin = rand_vec(&mut rng, 5.0);
-            // Aim at a point of the silhouette disc, up to 0.999 of the
-            // radius off center (near-grazing rays included).
-            let to_c = (center - origin).normalize();
-            let side = to_c.cross(Vec3::new(0.3, 1.0, 0.2)).normalize();
-            let up = to_c.cross(side);
-            let r = radius * rng.range(0.0, 0.999).sqrt();
-            let a = rng.range(0.0, std::f64::consts::TAU);
-            let target = center + side * (r * a.cos()) + up * (r * a.sin());
-            SphereCase {
-                center,
-                radius,
-                origin,
-                dir: (target - origin).normalize(),
-            }
-        })
-        .collect()
-}
-
-fn sphere_row<S: Scalar>(size: Size, cases: &[SphereCase]) -> Pending<'static> {
-    let inputs: Vec<_> = cases
-        .iter()
-        .filter_map(|c| {
-            Some((
-                Sphere::new(v3::<S>(c.center), S::from_f64(c.radius)).ok()?,
-                Ray::new(v3::<S>(c.origin), v3(c.dir)).ok()?,
-            ))
-        })
-        .collect();
-    let mut errs = Vec::new();
-    let mut missed = cases.len() - inputs.len();
-    for (c, (sp, ray)) in cases.iter().zip(&inputs) {
-        let rs = Sphere::new(c.center, c.radius).expect("f64 sphere");
-        let rr = Ray::new(c.origin, c.dir).expect("f64 ray");
-        let Some(tr) = rs.intersect(&rr, 0.0) else {
-            continue;
-        };
-        match sp.intersect(ray, S::ZERO) {
-            Some(t) => errs.push(dist(hit_f64(ray, t), rr.at(tr))),
-            None => missed += 1,
+    cases(size, 13, |rng| {
+        let radius = rng.log_range(1.0, 20.0);
+        let center = rand_vec(rng, 60.0) + Vec3::new(0.0, 0.0, -80.0);
+        let origin = rand_vec(rng, 5.0);
+        // Aim at a point of the silhouette disc, up to 0.999 of the
+        // radius off center (near-grazing rays included).
+        let to_c = (center - origin).normalize();
+        let side = to_c.cross(Vec3::new(0.3, 1.0, 0.2)).normalize();
+        let up = to_c.cross(side);
+        let r = radius * rng.range(0.0, 0.999).sqrt();
+        let a = rng.range(0.0, std::f64::consts::TAU);
+        let target = center + side * (r * a.cos()) + up * (r * a.sin());
+        SphereCase {
+            center,
+            radius,
+            aim: Aim::at(origin, target),
         }
-    }
-    let b = bench(size, inputs, 1.0, |(sp, ray)| sp.intersect(ray, S::ZERO));
-    let mut note = format!("p99 {}", super::markdown::num(p99(&errs)));
-    if missed > 0 {
-        note.push_str(&format!("; {}", count_note(missed, cases.len(), "missed")));
-    }
-    let row = Row::new(S::NAME, &errs, NO_KERNEL, note);
-    (row, b)
+    })
 }
 
 /// Line–sphere intersection (`ray::Sphere::intersect`).
 pub fn line_sphere(size: Size) -> Table {
     let cases = sphere_cases(size);
-    let rows = finish(size, per_scalar!(sphere_row(size, &cases)));
+    let rows = finish(size, per_scalar!(ray_row(size, &cases)));
     let recommendation = format!(
         "Rays aimed anywhere on the silhouette, up to 0.999 of the radius off center, where \
          the hit point is most sensitive to the direction: f32 is within {} units, I16F16 \

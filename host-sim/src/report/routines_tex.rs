@@ -1,7 +1,7 @@
 //! Texture-vector recovery and perspective texture mapping.
 
 use super::mcu::{McuCell, NO_KERNEL, lookup_span};
-use super::routines_geom::{count_note, find, g, max_err, ns, per_scalar, rand_vec, v3};
+use super::routines_geom::{find, g, max_err, mean_err, ns, per_scalar, rand_vec, scalar_row, v3};
 use super::{Pending, Rng, Row, Size, Table, bench, finish};
 use sightline::camera::Projection;
 use sightline::math::{Vec2, Vec3};
@@ -105,14 +105,7 @@ fn tv_row<S: Scalar>(size: Size, cases: &[TvCase]) -> Pending<'static> {
             }
         }
     }
-    let b = bench(size, inputs, 1.0, setup);
-    let row = Row::new(
-        S::NAME,
-        &errs,
-        NO_KERNEL,
-        count_note(rejected, cases.len(), "rejected"),
-    );
-    (row, b)
+    scalar_row::<S>(&errs, NO_KERNEL, rejected, cases.len(), "rejected").timed(size, inputs, setup)
 }
 
 /// Texture-mapping vectors from a polygon, then (u, v) per pixel.
@@ -424,11 +417,7 @@ pub fn texture_mapping(size: Size) -> Table {
         .collect();
     let mut rows = tex_rows::<f32>(size, &quads, &texels);
     rows.extend(tex_rows::<I16F16>(size, &quads, &texels));
-    let mean = |s: &str| {
-        find(&rows, s)
-            .and_then(|r| r.err)
-            .map_or(f64::NAN, |e| e.mean)
-    };
+    let mean = |s: &str| mean_err(&rows, s);
     // Share of pixels off by a texel or more, from the notes.
     let off = |s: &str| {
         find(&rows, s)

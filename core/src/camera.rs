@@ -385,7 +385,7 @@ impl<S: Scalar> Projection<S> {
                 if p.z <= S::ZERO || !p.z.is_finite() {
                     return None;
                 }
-                let inv_z = S::ONE.div_flag(p.z, &mut overflow);
+                let inv_z = S::ONE.div_noting_overflow(p.z, &mut overflow);
                 // One division for both coordinates: r = f/z, then x·r and
                 // y·r (a division costs ~300 instructions on ARMv6-M in
                 // fixed point, a multiply ~30). In I16F16 r is within 2⁻¹⁷
@@ -455,9 +455,9 @@ impl<S: Scalar> Projection<S> {
 /// `tests/tests/stability_geometry.rs`).
 fn focus_ratio<S: Scalar>(x: S, focus: S, z: S, overflow: &mut bool) -> S {
     match x.checked_mul(focus) {
-        Some(xf) => xf.div_flag(z, overflow),
+        Some(xf) => xf.div_noting_overflow(z, overflow),
         None => {
-            let r = x.div_flag(z, overflow);
+            let r = x.div_noting_overflow(z, overflow);
             r.checked_mul(focus).unwrap_or_else(|| {
                 *overflow = true;
                 S::ZERO

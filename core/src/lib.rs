@@ -87,6 +87,20 @@
 //! The pipeline sits above the raster: the scan converter knows nothing
 //! of vertices or clipping, and the pipeline hands it projected polygons.
 //!
+//! ## Naming
+//!
+//! - American spelling (`center`, `color`, `normalize`, `quantize`), as
+//!   the Rust ecosystem writes it.
+//! - `try_*` (`try_normalize`, `try_inverse`, `try_orthonormalize`)
+//!   returns `Option`: `None` is the one way it can fail. A validating
+//!   constructor (`new`, `from_*`, `look_at`) returns `Result` with an
+//!   error that says what was wrong.
+//! - `checked_*` returns `None` on overflow or a non-finite result;
+//!   `*_noting_overflow` saturates and sets a caller's flag instead, for
+//!   loops that check once at the end.
+//! - The const generic `VARYINGS` is the number of interpolated values a
+//!   vertex carries to the scan converter.
+//!
 //! ## Coordinate conventions
 //!
 //! These hold everywhere in the crate.

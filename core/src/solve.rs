@@ -418,7 +418,7 @@ impl<S: Scalar, const N: usize> Lu<S, N> {
                 };
                 row[k] = l;
                 for j in k + 1..N {
-                    let v = row[j].sub_mul_flag(l, pivot_row[j], &mut overflow);
+                    let v = row[j].sub_mul_noting_overflow(l, pivot_row[j], &mut overflow);
                     row[j] = v;
                     max_seen = max_seen.max_of(v.abs());
                 }
@@ -485,7 +485,7 @@ impl<S: Scalar, const N: usize> Lu<S, N> {
             for (j, xj) in done.iter().enumerate() {
                 let l = self.lu[i][j];
                 for c in 0..M {
-                    xi[c] = xi[c].sub_mul_flag(l, xj[c], overflow);
+                    xi[c] = xi[c].sub_mul_noting_overflow(l, xj[c], overflow);
                 }
             }
         }
@@ -495,7 +495,7 @@ impl<S: Scalar, const N: usize> Lu<S, N> {
             for (j, xj) in tail.iter().enumerate() {
                 let u = self.lu[i][i + 1 + j];
                 for c in 0..M {
-                    xi[c] = xi[c].sub_mul_flag(u, xj[c], overflow);
+                    xi[c] = xi[c].sub_mul_noting_overflow(u, xj[c], overflow);
                 }
             }
             for v in xi.iter_mut() {
@@ -514,7 +514,7 @@ impl<S: Scalar, const N: usize> Lu<S, N> {
         if S::IS_FLOAT {
             v * self.inv_diag[i]
         } else {
-            v.div_flag(self.lu[i][i], overflow)
+            v.div_noting_overflow(self.lu[i][i], overflow)
         }
     }
 
@@ -537,14 +537,14 @@ impl<S: Scalar, const N: usize> Lu<S, N> {
         for i in 0..N {
             let mut acc = w[i];
             for j in 0..i {
-                acc = acc.sub_mul_flag(self.lu[j][i], w[j], overflow);
+                acc = acc.sub_mul_noting_overflow(self.lu[j][i], w[j], overflow);
             }
             w[i] = self.divide_by_pivot(acc, i, overflow);
         }
         for i in (0..N).rev() {
             let mut acc = w[i];
             for j in i + 1..N {
-                acc = acc.sub_mul_flag(self.lu[j][i], w[j], overflow);
+                acc = acc.sub_mul_noting_overflow(self.lu[j][i], w[j], overflow);
             }
             w[i] = acc;
         }

@@ -115,7 +115,11 @@ impl Target for MockTarget {
 /// Pixel (i, j) is covered by the convex polygon under the top-left rule,
 /// computed from exact i128 edge functions at the center (16i+8, 16j+8).
 /// Independent of the scan converter: no stepping, no chains.
-pub fn oracle_covers<const K: usize>(poly: &[ScreenVertex<K>], i: i64, j: i64) -> bool {
+pub fn oracle_covers<const VARYINGS: usize>(
+    poly: &[ScreenVertex<VARYINGS>],
+    i: i64,
+    j: i64,
+) -> bool {
     let n = poly.len();
     if n < 3 {
         return false;

@@ -15,8 +15,8 @@ use sightline::camera::Projection;
 use sightline::math::Vec3;
 use sightline::pipeline::{Intensity, Pipeline, Uv, UvPerspective, Varyings, Vertex};
 use sightline::raster::{
-    AffineTexture, DepthBuffer, Flat, Gouraud, NoDepth, PerspectiveTexture, ScreenVertex, Shade,
-    fill_polygon,
+    AffineTexture, DepthBuffer, Flat, Gouraud, NoDepth, PerspectiveTexture, ScalableColor,
+    ScreenVertex, fill_polygon,
 };
 use sightline::target::Framebuffer;
 use sightline::texture::{RepeatPow2, Texture};

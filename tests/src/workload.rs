@@ -14,7 +14,7 @@ use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 use sightline::camera::{Camera, Projection};
 use sightline::math::Vec3;
 use sightline::pipeline::MeshVertex;
-use sightline::raster::{DepthBuffer, Shade};
+use sightline::raster::{DepthBuffer, ScalableColor};
 use sightline::scalar::Scalar;
 use sightline::scene::{Light, Material, PreparedMesh, PreparedObject, Renderer, View};
 use sightline::target::Framebuffer;

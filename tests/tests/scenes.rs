@@ -26,7 +26,7 @@
 //! golden image (ignored by git) and fails; goldens are never rewritten
 //! automatically.
 
-use sightline::raster::Shade;
+use sightline::raster::ScalableColor;
 use sightline::scalar::{I16F16, Scalar};
 use sightline::scene::{Color, Material, RaySample, Scene, builtin};
 use sightline::texture::RepeatPow2;

@@ -344,9 +344,9 @@ impl<S: Scalar> Mat4<S> {
         }
         let mut overflow = false;
         let r = Vec3::new(
-            h.x.div_flag(h.w, &mut overflow),
-            h.y.div_flag(h.w, &mut overflow),
-            h.z.div_flag(h.w, &mut overflow),
+            h.x.div_noting_overflow(h.w, &mut overflow),
+            h.y.div_noting_overflow(h.w, &mut overflow),
+            h.z.div_noting_overflow(h.w, &mut overflow),
         );
         (!overflow && r.is_finite()).then_some(r)
     }

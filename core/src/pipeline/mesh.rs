@@ -29,12 +29,12 @@ use crate::scalar::Scalar;
 /// A mesh vertex after [`Pipeline::project_vertex`]: the planes it lies
 /// outside of, and its projection when it lies inside all of them.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct MeshVertex<const K: usize> {
+pub struct MeshVertex<const VARYINGS: usize> {
     /// Bit `i` set: outside plane `i` of the frustum. Bit 7 set: not
     /// finite, or the projection overflowed.
     pub outcode: u8,
     /// The projected vertex; meaningful only when `outcode == 0`.
-    pub screen: ScreenVertex<K>,
+    pub screen: ScreenVertex<VARYINGS>,
 }
 
 /// The outcode bit for a vertex that cannot be used directly (not
@@ -44,28 +44,28 @@ pub struct MeshVertex<const K: usize> {
 pub const OUTCODE_UNUSABLE: u8 = 0x80;
 const UNUSABLE: u8 = OUTCODE_UNUSABLE;
 
-impl<const K: usize> Default for MeshVertex<K> {
+impl<const VARYINGS: usize> Default for MeshVertex<VARYINGS> {
     fn default() -> Self {
         Self {
             outcode: UNUSABLE,
-            screen: ScreenVertex::new(0, 0, 0, [0; K]),
+            screen: ScreenVertex::new(0, 0, 0, [0; VARYINGS]),
         }
     }
 }
 
 /// A triangle ready for [`fill_polygon`](crate::raster::fill_polygon).
 #[derive(Clone, Debug)]
-pub enum MeshTriangle<const K: usize> {
+pub enum MeshTriangle<const VARYINGS: usize> {
     /// Entirely inside the volume: the three projected vertices.
-    Inside([ScreenVertex<K>; 3]),
+    Inside([ScreenVertex<VARYINGS>; 3]),
     /// Crossed a plane: the clipped, projected polygon.
-    Clipped(ScreenPolygon<K>),
+    Clipped(ScreenPolygon<VARYINGS>),
 }
 
-impl<const K: usize> MeshTriangle<K> {
+impl<const VARYINGS: usize> MeshTriangle<VARYINGS> {
     /// The vertices.
     #[must_use]
-    pub fn as_slice(&self) -> &[ScreenVertex<K>] {
+    pub fn as_slice(&self) -> &[ScreenVertex<VARYINGS>] {
         match self {
             Self::Inside(v) => v,
             Self::Clipped(p) => p,
@@ -80,10 +80,10 @@ impl<S: Scalar> Pipeline<S> {
     /// marked unusable, so triangles using it take the clipping path,
     /// which reports the error.
     #[must_use]
-    pub fn project_vertex<A: Varyings<S, K>, const K: usize>(
+    pub fn project_vertex<A: Varyings<S, VARYINGS>, const VARYINGS: usize>(
         &self,
         v: &Vertex<S, A>,
-    ) -> MeshVertex<K> {
+    ) -> MeshVertex<VARYINGS> {
         if !(v.pos.is_finite() && v.attr.is_finite()) {
             return MeshVertex::default();
         }
@@ -124,10 +124,10 @@ impl<S: Scalar> Pipeline<S> {
 
     /// Projects every vertex of `verts` into `out` (pairwise; extra
     /// entries of either slice are left alone).
-    pub fn project_vertices<A: Varyings<S, K>, const K: usize>(
+    pub fn project_vertices<A: Varyings<S, VARYINGS>, const VARYINGS: usize>(
         &self,
         verts: &[Vertex<S, A>],
-        out: &mut [MeshVertex<K>],
+        out: &mut [MeshVertex<VARYINGS>],
     ) {
         for (o, v) in out.iter_mut().zip(verts) {
             *o = self.project_vertex(v);
@@ -144,14 +144,14 @@ impl<S: Scalar> Pipeline<S> {
     /// As [`Self::project_polygon`]; an index out of range is reported as
     /// [`DrawError::Projection`].
     #[inline]
-    pub fn mesh_triangle<A, const K: usize>(
+    pub fn mesh_triangle<A, const VARYINGS: usize>(
         &self,
         verts: &[Vertex<S, A>],
-        projected: &[MeshVertex<K>],
+        projected: &[MeshVertex<VARYINGS>],
         tri: [u32; 3],
-    ) -> Result<Option<MeshTriangle<K>>, DrawError>
+    ) -> Result<Option<MeshTriangle<VARYINGS>>, DrawError>
     where
-        A: Varyings<S, K>,
+        A: Varyings<S, VARYINGS>,
     {
         let get = |i: u32| projected.get(i as usize).ok_or(DrawError::Projection);
         let (a, b, c) = (get(tri[0])?, get(tri[1])?, get(tri[2])?);
@@ -172,7 +172,7 @@ impl<S: Scalar> Pipeline<S> {
     /// [`Self::project_polygon`]).
     #[inline]
     #[must_use]
-    pub fn keep<const K: usize>(&self, screen: &[ScreenVertex<K>]) -> bool {
+    pub fn keep<const VARYINGS: usize>(&self, screen: &[ScreenVertex<VARYINGS>]) -> bool {
         if self.cull == Cull::None {
             return true;
         }
@@ -201,7 +201,10 @@ impl<S: Scalar> Pipeline<S> {
 }
 
 /// Front-facing (negative shoelace area, y down) for any polygon.
-fn shoelace_front<const K: usize>(screen: &[ScreenVertex<K>], last: ScreenVertex<K>) -> bool {
+fn shoelace_front<const VARYINGS: usize>(
+    screen: &[ScreenVertex<VARYINGS>],
+    last: ScreenVertex<VARYINGS>,
+) -> bool {
     // i128: coordinates may reach 2^31 (the scan converter rejects beyond
     // 2^28 later).
     let mut area2: i128 = 0;

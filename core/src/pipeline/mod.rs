@@ -53,7 +53,8 @@ use core::fmt;
 /// A clipped, projected polygon ready for
 /// [`crate::raster::fill_polygon`]: at most
 /// [`MAX_CLIPPED_VERTICES`] vertices.
-pub type ScreenPolygon<const K: usize> = heapless::Vec<ScreenVertex<K>, MAX_CLIPPED_VERTICES>;
+pub type ScreenPolygon<const VARYINGS: usize> =
+    heapless::Vec<ScreenVertex<VARYINGS>, MAX_CLIPPED_VERTICES>;
 
 /// Why a [`Pipeline`] could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -140,7 +141,7 @@ pub enum Cull {
 /// use sightline::camera::Projection;
 /// use sightline::math::Vec3;
 /// use sightline::pipeline::{Intensity, Pipeline, Vertex};
-/// use sightline::raster::{DepthBuffer, Gouraud, Shade};
+/// use sightline::raster::{DepthBuffer, Gouraud, ScalableColor};
 /// use sightline::target::Framebuffer;
 ///
 /// let mut pixels = [Rgb565::BLACK; 240 * 240];
@@ -345,10 +346,10 @@ impl<S: Scalar> Pipeline<S> {
     /// format: 28.4 position, depth key and varyings. `None` if the
     /// projection fails (behind the eye, overflow, non-finite).
     #[must_use]
-    pub fn project<A: Varyings<S, K>, const K: usize>(
+    pub fn project<A: Varyings<S, VARYINGS>, const VARYINGS: usize>(
         &self,
         v: &Vertex<S, A>,
-    ) -> Option<ScreenVertex<K>> {
+    ) -> Option<ScreenVertex<VARYINGS>> {
         let (p, depth) = self.projection.project(v.pos)?;
         let x = p.x.to_subpixel(SUBPIXEL_BITS)?;
         let y = p.y.to_subpixel(SUBPIXEL_BITS)?;
@@ -379,12 +380,12 @@ impl<S: Scalar> Pipeline<S> {
     /// # Errors
     /// [`DrawError::Clip`] for non-finite or oversized input,
     /// [`DrawError::Projection`] if a clipped vertex cannot be projected.
-    pub fn project_polygon<A, const K: usize>(
+    pub fn project_polygon<A, const VARYINGS: usize>(
         &self,
         poly: &[Vertex<S, A>],
-    ) -> Result<Option<ScreenPolygon<K>>, DrawError>
+    ) -> Result<Option<ScreenPolygon<VARYINGS>>, DrawError>
     where
-        A: Varyings<S, K>,
+        A: Varyings<S, VARYINGS>,
     {
         let clipped = self.frustum.clip(poly).map_err(DrawError::Clip)?;
         let mut screen = ScreenPolygon::new();
@@ -407,7 +408,7 @@ impl<S: Scalar> Pipeline<S> {
     /// # Errors
     /// As [`Self::project_polygon`]; nothing is drawn then. Nothing panics
     /// and nothing is written outside `target`, whatever the input.
-    pub fn draw_polygon<A, T, Z, Sh, const K: usize>(
+    pub fn draw_polygon<A, T, Z, Sh, const VARYINGS: usize>(
         &self,
         target: &mut T,
         depth: &mut Z,
@@ -415,10 +416,10 @@ impl<S: Scalar> Pipeline<S> {
         poly: &[Vertex<S, A>],
     ) -> Result<DrawOutcome, DrawError>
     where
-        A: Varyings<S, K>,
+        A: Varyings<S, VARYINGS>,
         T: Target,
         Z: DepthTest,
-        Sh: SpanShader<K, Color = T::Color>,
+        Sh: SpanShader<VARYINGS, Color = T::Color>,
     {
         Ok(match self.project_polygon(poly)? {
             Some(screen) => DrawOutcome::Filled(fill_polygon(target, depth, shader, &screen)),

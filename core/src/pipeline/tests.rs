@@ -446,13 +446,13 @@ fn bands_match_full_frame<S: Scalar>() {
 /// at ½) textured with u = 2x + 4, v = 2z, through a 32×24 perspective
 /// pipeline (focus 12). `make` builds the vertex attributes from (u, v).
 #[cfg(feature = "perspective")]
-fn render_floor<S: Scalar, A, Sh, const K: usize>(
+fn render_floor<S: Scalar, A, Sh, const VARYINGS: usize>(
     sh: &Sh,
     make: impl Fn(S, S) -> A,
 ) -> [u16; 32 * 24]
 where
-    A: Varyings<S, K>,
-    Sh: crate::raster::SpanShader<K, Color = u16>,
+    A: Varyings<S, VARYINGS>,
+    Sh: crate::raster::SpanShader<VARYINGS, Color = u16>,
 {
     use crate::target::Framebuffer;
     let p = Pipeline::new(
@@ -690,7 +690,7 @@ fn culling<S: Scalar>() {
 }
 
 /// The pixels (12×8 viewport) that `poly` covers, and which shade.
-fn covered<const K: usize>(poly: &[ScreenVertex<K>]) -> Vec<u32> {
+fn covered<const VARYINGS: usize>(poly: &[ScreenVertex<VARYINGS>]) -> Vec<u32> {
     let mut px = std::vec![0u32; 12 * 8];
     let mut fb = crate::target::Framebuffer::new(&mut px, 12, 8, 12).unwrap();
     crate::raster::fill_polygon(&mut fb, &mut NoDepth, &Flat(1u32), poly);

@@ -20,15 +20,15 @@ pub trait Attributes<S: Scalar>: Copy + Debug {
     fn is_finite(&self) -> bool;
 }
 
-/// Attributes that map to the scan converter's `K` varyings (16.16 fixed
+/// Attributes that map to the scan converter's `VARYINGS` varyings (16.16 fixed
 /// point, see [`SpanShader`](crate::raster::SpanShader)).
-pub trait Varyings<S: Scalar, const K: usize>: Attributes<S> {
+pub trait Varyings<S: Scalar, const VARYINGS: usize>: Attributes<S> {
     /// The varyings for this vertex. `q` is `near/z` for perspective
     /// projection (in (0, 1] after clipping) and 1 for parallel; only
     /// perspective-correct formats use it. Values that do not convert
     /// (NaN, out of range) become 0 or saturate; the scan converter clamps
     /// to the shader's range.
-    fn to_varyings(&self, q: S) -> [i32; K];
+    fn to_varyings(&self, q: S) -> [i32; VARYINGS];
 }
 
 /// A view-space vertex: position (x right, y down, z forward) and

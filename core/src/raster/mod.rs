@@ -70,7 +70,7 @@ pub use depth::DepthBuffer;
 pub use depth::{DEPTH_FRAC_BITS, DepthKey, DepthTest, NoDepth, StoredDepth};
 #[cfg(feature = "gouraud")]
 pub use shader::Gouraud;
-pub use shader::{Flat, Shade, SpanShader, VARYING_FRAC_BITS};
+pub use shader::{Flat, ScalableColor, SpanShader, VARYING_FRAC_BITS};
 #[cfg(feature = "perspective")]
 pub use texture::PerspectiveTexture;
 #[cfg(feature = "texture")]
@@ -91,7 +91,7 @@ pub const COORD_LIMIT: i32 = 1 << 28;
 
 /// A polygon vertex in screen space.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct ScreenVertex<const K: usize> {
+pub struct ScreenVertex<const VARYINGS: usize> {
     /// x in 28.4 fixed point (pixels × 16).
     pub x: i32,
     /// y in 28.4 fixed point (pixels × 16), down the screen.
@@ -99,14 +99,14 @@ pub struct ScreenVertex<const K: usize> {
     /// Depth key, 0 nearest; used only with a [`DepthBuffer`].
     pub z: DepthKey,
     /// The shader's varyings, 16.16 fixed point.
-    pub v: [i32; K],
+    pub v: [i32; VARYINGS],
 }
 
-impl<const K: usize> ScreenVertex<K> {
+impl<const VARYINGS: usize> ScreenVertex<VARYINGS> {
     /// A vertex at 28.4 coordinates (pixels × 16) with a depth key and
     /// varyings.
     #[must_use]
-    pub const fn new(x: i32, y: i32, z: DepthKey, v: [i32; K]) -> Self {
+    pub const fn new(x: i32, y: i32, z: DepthKey, v: [i32; VARYINGS]) -> Self {
         Self { x, y, z, v }
     }
 }
@@ -124,8 +124,8 @@ pub enum FillOutcome {
 }
 
 /// One chain of edges from the top vertex to the bottom vertex.
-struct Chain<'v, const K: usize> {
-    verts: &'v [ScreenVertex<K>],
+struct Chain<'v, const VARYINGS: usize> {
+    verts: &'v [ScreenVertex<VARYINGS>],
     /// End vertex of the current edge.
     pos: usize,
     bottom: usize,
@@ -135,8 +135,8 @@ struct Chain<'v, const K: usize> {
     edge: EdgeStepper,
 }
 
-impl<'v, const K: usize> Chain<'v, K> {
-    fn new(verts: &'v [ScreenVertex<K>], top: usize, bottom: usize, forward: bool) -> Self {
+impl<'v, const VARYINGS: usize> Chain<'v, VARYINGS> {
+    fn new(verts: &'v [ScreenVertex<VARYINGS>], top: usize, bottom: usize, forward: bool) -> Self {
         Self {
             verts,
             pos: top,
@@ -208,16 +208,16 @@ impl<'v, const K: usize> Chain<'v, K> {
 /// # Panics
 ///
 /// Never.
-pub fn fill_polygon<T, Z, Sh, const K: usize>(
+pub fn fill_polygon<T, Z, Sh, const VARYINGS: usize>(
     target: &mut T,
     depth: &mut Z,
     shader: &Sh,
-    verts: &[ScreenVertex<K>],
+    verts: &[ScreenVertex<VARYINGS>],
 ) -> FillOutcome
 where
     T: Target,
     Z: DepthTest,
-    Sh: SpanShader<K, Color = T::Color>,
+    Sh: SpanShader<VARYINGS, Color = T::Color>,
 {
     let n = verts.len();
     if n < 3 {
@@ -276,12 +276,12 @@ where
     }
     let solid = shader.solid();
     let zgrad = if Z::ENABLED {
-        let z = |v: &ScreenVertex<K>| (v.z as i64) << DEPTH_FRAC_BITS;
+        let z = |v: &ScreenVertex<VARYINGS>| (v.z as i64) << DEPTH_FRAC_BITS;
         Gradient::new(&basis, [z(&bv[0]), z(&bv[1]), z(&bv[2])])
     } else {
         Gradient::default()
     };
-    let mut vgrad = [Gradient::default(); K];
+    let mut vgrad = [Gradient::default(); VARYINGS];
     if solid.is_none() {
         for (k, g) in vgrad.iter_mut().enumerate() {
             *g = Gradient::new(
@@ -318,17 +318,17 @@ where
                 };
                 // The varyings at the span's first pixel and their steps:
                 // one set-up for the fused write and the runs.
-                let mut start = [0i32; K];
-                let mut step = [0i32; K];
+                let mut start = [0i32; VARYINGS];
+                let mut step = [0i32; VARYINGS];
                 if solid.is_none() {
-                    for k in 0..K {
+                    for k in 0..VARYINGS {
                         (start[k], step[k]) = vgrad[k].span(x, y, len, lo, hi);
                     }
                 }
                 // The varyings `i` pixels into the span.
                 let at = |i: u32| {
                     let mut v = start;
-                    for k in 0..K {
+                    for k in 0..VARYINGS {
                         v[k] = v[k].wrapping_add(step[k].wrapping_mul(i as i32));
                     }
                     v

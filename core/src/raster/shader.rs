@@ -1,6 +1,6 @@
 //! Span shaders: what color each pixel of a span gets.
 //!
-//! A shader sees only the polygon's interpolated *varyings*: `K` values in
+//! A shader sees only the polygon's interpolated *varyings*: `VARYINGS` values in
 //! 16.16 fixed point, set up per span and stepped by one integer add per
 //! pixel. Per-pixel work is [`SpanShader::color`] plus those adds.
 
@@ -10,8 +10,8 @@ use embedded_graphics::pixelcolor::{Gray8, GrayColor, Rgb565, RgbColor};
 /// Fractional bits of the varyings handed to shaders (16.16).
 pub const VARYING_FRAC_BITS: u32 = 16;
 
-/// Colors pixels from `K` interpolated varyings.
-pub trait SpanShader<const K: usize> {
+/// Colors pixels from `VARYINGS` interpolated varyings.
+pub trait SpanShader<const VARYINGS: usize> {
     /// The color produced.
     type Color: Copy;
 
@@ -37,7 +37,7 @@ pub trait SpanShader<const K: usize> {
 
     /// The color for one pixel with varyings `v` (16.16, within
     /// [`Self::RANGE`]).
-    fn color(&self, v: &[i32; K]) -> Self::Color;
+    fn color(&self, v: &[i32; VARYINGS]) -> Self::Color;
 
     /// Writes one run of `len` pixels starting at column `x` of row `y`,
     /// whose first pixel has varyings `start` and each next pixel `step`
@@ -51,8 +51,8 @@ pub trait SpanShader<const K: usize> {
         y: i32,
         x: i32,
         len: u32,
-        start: [i32; K],
-        step: [i32; K],
+        start: [i32; VARYINGS],
+        step: [i32; VARYINGS],
     ) {
         let mut v = start;
         target.fill_with(y, x, len, || {
@@ -70,7 +70,7 @@ pub trait SpanShader<const K: usize> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Flat<C>(pub C);
 
-impl<C: Copy, const K: usize> SpanShader<K> for Flat<C> {
+impl<C: Copy, const VARYINGS: usize> SpanShader<VARYINGS> for Flat<C> {
     type Color = C;
 
     fn solid(&self) -> Option<C> {
@@ -78,17 +78,17 @@ impl<C: Copy, const K: usize> SpanShader<K> for Flat<C> {
     }
 
     #[inline]
-    fn color(&self, _v: &[i32; K]) -> C {
+    fn color(&self, _v: &[i32; VARYINGS]) -> C {
         self.0
     }
 }
 
 /// Gouraud shading: the first varying is the intensity 0..=255 (16.16),
 /// looked up in a 256-entry color ramp; further varyings are ignored.
-/// Per pixel: one add, one shift, one load. With `K = 0` every pixel gets
+/// Per pixel: one add, one shift, one load. With `VARYINGS = 0` every pixel gets
 /// `ramp[0]`.
 ///
-/// Build a ramp with [`Shade::ramp`] or fill one by hand (a palette).
+/// Build a ramp with [`ScalableColor::ramp`] or fill one by hand (a palette).
 #[cfg(feature = "gouraud")]
 #[derive(Clone, Copy, Debug)]
 pub struct Gouraud<'a, C> {
@@ -105,18 +105,18 @@ impl<'a, C: Copy> Gouraud<'a, C> {
 }
 
 #[cfg(feature = "gouraud")]
-impl<C: Copy, const K: usize> SpanShader<K> for Gouraud<'_, C> {
+impl<C: Copy, const VARYINGS: usize> SpanShader<VARYINGS> for Gouraud<'_, C> {
     type Color = C;
     const RANGE: (i32, i32) = (0, (256 << VARYING_FRAC_BITS) - 1);
 
     #[inline]
-    fn color(&self, v: &[i32; K]) -> C {
+    fn color(&self, v: &[i32; VARYINGS]) -> C {
         // RANGE keeps v[0] >> 16 in 0..=255 (the span set-up clamps both
         // ends); the `u8` cast only drops bits that are already zero, and a
         // u8 index cannot miss a 256-entry array. Debug builds (and so the
         // tests) check the range, so that a set-up fault that let a value
         // wrap is seen instead of being hidden by the cast. `first()` is
-        // resolved at compile time (K is a constant).
+        // resolved at compile time (VARYINGS is a constant).
         let i = v.first().map_or(0, |&i| i >> VARYING_FRAC_BITS);
         debug_assert!(
             (0..256).contains(&i),
@@ -127,7 +127,7 @@ impl<C: Copy, const K: usize> SpanShader<K> for Gouraud<'_, C> {
 }
 
 /// Colors that can be scaled by an intensity, to build Gouraud ramps.
-pub trait Shade: Copy {
+pub trait ScalableColor: Copy {
     /// `self` scaled by `i / 255` per channel, rounded down.
     #[must_use]
     fn scale(self, i: u8) -> Self;
@@ -168,7 +168,7 @@ fn scale_channel_is_exact() {
     }
 }
 
-impl Shade for Rgb565 {
+impl ScalableColor for Rgb565 {
     fn scale(self, i: u8) -> Self {
         Rgb565::new(
             scale_channel(self.r(), i),
@@ -178,7 +178,7 @@ impl Shade for Rgb565 {
     }
 }
 
-impl Shade for Gray8 {
+impl ScalableColor for Gray8 {
     fn scale(self, i: u8) -> Self {
         Gray8::new(scale_channel(self.luma(), i))
     }

@@ -21,7 +21,7 @@
 
 #[cfg(feature = "perspective")]
 use super::persp_div::divide;
-use super::shader::{Shade, SpanShader, VARYING_FRAC_BITS};
+use super::shader::{ScalableColor, SpanShader, VARYING_FRAC_BITS};
 #[cfg(feature = "perspective")]
 use crate::target::Target;
 use crate::texture::{Texture, Wrap};
@@ -63,7 +63,7 @@ impl<C: Copy, W: Wrap> SpanShader<2> for AffineTexture<'_, C, W> {
 /// (intensity 0..=255, u, v), all 16.16, as
 /// [`IntensityUv`](crate::pipeline::IntensityUv) vertices produce. Each
 /// pixel is its texel scaled by the interpolated intensity
-/// ([`Shade::scale`]), so full intensity (255) gives exactly
+/// ([`ScalableColor::scale`]), so full intensity (255) gives exactly
 /// [`AffineTexture`]'s color.
 ///
 /// Per pixel: the affine texture's work plus one scale per channel.
@@ -73,7 +73,7 @@ pub struct LitAffineTexture<'a, C, W> {
     wrap: PhantomData<W>,
 }
 
-impl<'a, C: Shade, W: Wrap> LitAffineTexture<'a, C, W> {
+impl<'a, C: ScalableColor, W: Wrap> LitAffineTexture<'a, C, W> {
     /// A lit affine texture shader; `None` if `W` does not accept the
     /// texture's size.
     #[must_use]
@@ -85,7 +85,7 @@ impl<'a, C: Shade, W: Wrap> LitAffineTexture<'a, C, W> {
     }
 }
 
-impl<C: Shade, W: Wrap> SpanShader<3> for LitAffineTexture<'_, C, W> {
+impl<C: ScalableColor, W: Wrap> SpanShader<3> for LitAffineTexture<'_, C, W> {
     type Color = C;
 
     #[inline]

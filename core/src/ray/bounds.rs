@@ -18,8 +18,8 @@
 //!   A box may thus report a ray that just misses it, never the reverse.
 
 use super::Ray;
+use super::checked::sub3;
 use super::nearest::{Intersect, SurfaceHit};
-use super::wide::sub3;
 use crate::math::Vec3;
 use crate::scalar::Scalar;
 use core::fmt;

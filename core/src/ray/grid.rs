@@ -49,7 +49,7 @@
 
 use super::bounds::Aabb;
 use super::nearest::{Intersect, SurfaceHit};
-use super::{Ray, wide::point_at};
+use super::{Ray, checked::point_at};
 use crate::math::Vec3;
 use crate::scalar::Scalar;
 use core::fmt;

@@ -71,6 +71,7 @@
 //! checked path of [`Scalar`]) is reported as no hit.
 
 pub mod bounds;
+pub(crate) mod checked;
 #[cfg(feature = "column")]
 pub mod column;
 #[cfg(feature = "grid")]
@@ -83,7 +84,6 @@ pub mod slab;
 #[cfg(feature = "sphere")]
 pub mod sphere;
 pub mod triangle;
-pub(crate) mod wide;
 
 pub use bounds::{Aabb, AabbError, Bounded, BoundingSphere, BoundingSphereError, BoundingVolume};
 #[cfg(feature = "column")]
@@ -164,7 +164,7 @@ impl<S: Scalar> Ray<S> {
         if !(from.is_finite() && through.is_finite()) {
             return Err(RayError::NonFinite);
         }
-        let d = wide::sub3(through, from).ok_or(RayError::ZeroDirection)?;
+        let d = checked::sub3(through, from).ok_or(RayError::ZeroDirection)?;
         Self::new(from, d)
     }
 

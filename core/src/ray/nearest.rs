@@ -11,7 +11,7 @@
 
 #[cfg(feature = "sphere")]
 use super::Sphere;
-use super::wide::point_at;
+use super::checked::point_at;
 use super::{Mesh, Plane, Polygon, Ray, SlabIndex, Triangle};
 use crate::math::{Affine3, Vec3};
 use crate::scalar::Scalar;

@@ -1,7 +1,7 @@
 //! Planes and line–plane intersection.
 
 use super::Ray;
-use super::wide::{dot3_checked, raw, sub3};
+use super::checked::{dot3_checked, fixed_bits, sub3};
 use crate::math::Vec3;
 use crate::scalar::Scalar;
 use core::cmp::Ordering;
@@ -153,7 +153,7 @@ fn dot_sign<S: Scalar>(a: Vec3<S>, b: Vec3<S>) -> Option<Ordering> {
         return None;
     }
     if !S::IS_FLOAT {
-        let w = |x: S| raw(x) as i128;
+        let w = |x: S| fixed_bits(x) as i128;
         let s = w(a.x) * w(b.x) + w(a.y) * w(b.y) + w(a.z) * w(b.z);
         return Some(s.cmp(&0));
     }

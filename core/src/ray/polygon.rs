@@ -27,7 +27,7 @@
 //! Robust Geometric Predicates", 1997). The projection only drops a
 //! coordinate, so it is exact too. [`Edge2::value`] returns the number
 //! itself, rounded (fixed point: each product exact with one rounding,
-//! [`Scalar::sub_mul_flag`]; `None` on overflow).
+//! [`Scalar::sub_mul_noting_overflow`]; `None` on overflow).
 //!
 //! # Boundary policy
 //!
@@ -63,8 +63,8 @@
 //! as below) and `p` is strictly left of the edge directed upward.
 
 use super::Ray;
+use super::checked::{point_at, sub2};
 use super::plane::Plane;
-use super::wide::{point_at, sub2};
 use crate::math::{Vec2, Vec3};
 use crate::scalar::Scalar;
 use core::cmp::Ordering;
@@ -129,8 +129,8 @@ impl<S: Scalar> Edge2<S> {
     pub fn coefficients(&self) -> Option<(S, S, S)> {
         let mut of = false;
         let c = S::ZERO
-            .sub_mul_flag(-self.d.y, self.a.x, &mut of)
-            .sub_mul_flag(self.d.x, self.a.y, &mut of);
+            .sub_mul_noting_overflow(-self.d.y, self.a.x, &mut of)
+            .sub_mul_noting_overflow(self.d.x, self.a.y, &mut of);
         (!of && c.is_finite()).then_some((-self.d.y, self.d.x, c))
     }
 
@@ -141,8 +141,8 @@ impl<S: Scalar> Edge2<S> {
         let r = sub2(p, self.a)?;
         let mut of = false;
         let e = S::ZERO
-            .sub_mul_flag(self.d.y, r.x, &mut of)
-            .sub_mul_flag(-self.d.x, r.y, &mut of);
+            .sub_mul_noting_overflow(self.d.y, r.x, &mut of)
+            .sub_mul_noting_overflow(-self.d.x, r.y, &mut of);
         (!of && e.is_finite()).then_some(e)
     }
 

@@ -40,7 +40,7 @@
 //! double-double reference.
 
 use super::Ray;
-use super::wide::sub3;
+use super::checked::sub3;
 use crate::math::Vec3;
 use crate::scalar::Scalar;
 use core::fmt;

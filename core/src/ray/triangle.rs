@@ -36,7 +36,7 @@
 //! gives no hit.
 
 use super::Ray;
-use super::wide::{dop_wide, from_raw, raw, sub3};
+use super::checked::{diff_of_products_wide, fixed_bits, from_fixed_bits, sub3};
 use crate::math::Vec3;
 use crate::scalar::Scalar;
 use core::fmt;
@@ -114,8 +114,8 @@ impl<S: Scalar> ShearedRay<S> {
         let [kx, ky, kz] = self.k;
         let [sx, sy, sz] = self.shear;
         let mut of = false;
-        let x = a[kx].sub_mul_flag(sx, a[kz], &mut of);
-        let y = a[ky].sub_mul_flag(sy, a[kz], &mut of);
+        let x = a[kx].sub_mul_noting_overflow(sx, a[kz], &mut of);
+        let y = a[ky].sub_mul_noting_overflow(sy, a[kz], &mut of);
         let z = a[kz].checked_mul(sz)?;
         (!of && x.is_finite() && y.is_finite()).then_some([x, y, z])
     }
@@ -170,9 +170,9 @@ fn float_hit<S: Scalar>(a: [S; 3], b: [S; 3], c: [S; 3]) -> Option<TriangleHit<S
     let suspect = |e: S| e == zero || !e.is_finite();
     if suspect(u) || suspect(v) || suspect(w) {
         // Fallback to higher precision (Woop et al. 2013, §3).
-        let u = dop_wide(c[0], b[1], c[1], b[0]);
-        let v = dop_wide(a[0], c[1], a[1], c[0]);
-        let w = dop_wide(b[0], a[1], b[1], a[0]);
+        let u = diff_of_products_wide(c[0], b[1], c[1], b[0]);
+        let v = diff_of_products_wide(a[0], c[1], a[1], c[0]);
+        let w = diff_of_products_wide(b[0], a[1], b[1], a[0]);
         if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
             return None;
         }
@@ -206,7 +206,13 @@ fn float_hit<S: Scalar>(a: [S; 3], b: [S; 3], c: [S; 3]) -> Option<TriangleHit<S
 }
 
 fn fixed_hit<S: Scalar>(a: [S; 3], b: [S; 3], c: [S; 3]) -> Option<TriangleHit<S>> {
-    let r = |p: [S; 3]| [raw(p[0]) as i128, raw(p[1]) as i128, raw(p[2]) as i128];
+    let r = |p: [S; 3]| {
+        [
+            fixed_bits(p[0]) as i128,
+            fixed_bits(p[1]) as i128,
+            fixed_bits(p[2]) as i128,
+        ]
+    };
     let (a, b, c) = (r(a), r(b), r(c));
     // Exact: |raw| < 2³¹, so each product is below 2⁶² and U, V, W, det
     // below 2⁶⁵; T below 2⁹⁸. Raw U has 2F fraction bits, T 3F.
@@ -221,12 +227,12 @@ fn fixed_hit<S: Scalar>(a: [S; 3], b: [S; 3], c: [S; 3]) -> Option<TriangleHit<S
         return None;
     }
     let t = (u * a[2] + v * b[2] + w * c[2]) / det;
-    let one = raw(S::ONE) as i128;
+    let one = fixed_bits(S::ONE) as i128;
     Some(TriangleHit {
-        t: from_raw(t)?,
-        u: from_raw(u * one / det)?,
-        v: from_raw(v * one / det)?,
-        w: from_raw(w * one / det)?,
+        t: from_fixed_bits(t)?,
+        u: from_fixed_bits(u * one / det)?,
+        v: from_fixed_bits(v * one / det)?,
+        w: from_fixed_bits(w * one / det)?,
     })
 }
 

@@ -483,7 +483,7 @@ impl<Frac: LeEqU32 + 'static> Scalar for Fx<Frac> {
             Self::fits(Self::div_wide(self.bits, rhs.bits))
         }
     }
-    fn sub_mul_flag(self, a: Self, b: Self, overflow: &mut bool) -> Self {
+    fn sub_mul_noting_overflow(self, a: Self, b: Self, overflow: &mut bool) -> Self {
         let f = Self::FRAC;
         // |self·2ᶠ| ≤ 2⁶¹ and |a·b| ≤ 2⁶², so the i64 never overflows.
         let exact = ((self.bits as i64) << f) - widening_mul(a.bits, b.bits);
@@ -496,7 +496,7 @@ impl<Frac: LeEqU32 + 'static> Scalar for Fx<Frac> {
             }
         }
     }
-    fn div_flag(self, d: Self, overflow: &mut bool) -> Self {
+    fn div_noting_overflow(self, d: Self, overflow: &mut bool) -> Self {
         match self.checked_div(d) {
             Some(r) => r,
             None => {

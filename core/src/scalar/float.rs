@@ -90,11 +90,11 @@ macro_rules! impl_float {
                 if rhs == 0.0 { None } else { finite(self / rhs) }
             }
             #[inline]
-            fn sub_mul_flag(self, a: Self, b: Self, _overflow: &mut bool) -> Self {
+            fn sub_mul_noting_overflow(self, a: Self, b: Self, _overflow: &mut bool) -> Self {
                 self - a * b
             }
             #[inline]
-            fn div_flag(self, d: Self, _overflow: &mut bool) -> Self {
+            fn div_noting_overflow(self, d: Self, _overflow: &mut bool) -> Self {
                 self / d
             }
             #[inline]

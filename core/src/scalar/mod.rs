@@ -145,9 +145,9 @@ pub trait Scalar:
     /// `self - a * b` (no fused multiply-add, for bit-reproducibility
     /// across targets) and leave the flag alone: a non-finite result is
     /// detected by the caller's final [`Scalar::is_finite`] check.
-    fn sub_mul_flag(self, a: Self, b: Self, overflow: &mut bool) -> Self;
-    /// `self / d` with the same reporting as [`Scalar::sub_mul_flag`].
-    fn div_flag(self, d: Self, overflow: &mut bool) -> Self;
+    fn sub_mul_noting_overflow(self, a: Self, b: Self, overflow: &mut bool) -> Self;
+    /// `self / d` with the same reporting as [`Scalar::sub_mul_noting_overflow`].
+    fn div_noting_overflow(self, d: Self, overflow: &mut bool) -> Self;
 
     /// The smaller of two values (`other` if they are unordered).
     ///

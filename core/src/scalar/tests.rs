@@ -120,7 +120,7 @@ fn checked_ops_report_overflow<T: Scalar>() {
     assert_eq!(T::from_f64(big), T::MAX);
     assert_eq!(T::from_f64(-big), T::MIN);
     let mut flag = false;
-    let _ = T::ONE.sub_mul_flag(T::ONE, T::ONE, &mut flag);
+    let _ = T::ONE.sub_mul_noting_overflow(T::ONE, T::ONE, &mut flag);
     assert!(!flag);
 }
 
@@ -263,7 +263,7 @@ fn fixed_operators_saturate_instead_of_wrapping() {
     assert_eq!((-T::ONE).sqrt(), T::ZERO);
     let mut flag = false;
     assert_eq!(
-        T::from_i32(300).sub_mul_flag(T::from_i32(300), T::from_i32(300), &mut flag),
+        T::from_i32(300).sub_mul_noting_overflow(T::from_i32(300), T::from_i32(300), &mut flag),
         T::MIN
     );
     assert!(flag);

@@ -15,7 +15,7 @@
 //! | `prepared.rs` | the prepared scene, made once: [`PreparedMesh`] (positions and normals in the render scalar), [`PreparedObject`], [`Scene::prepare`] into caller storage |
 //! | `render.rs` | the raster renderer, per frame: [`Renderer::project`] (each vertex once) and [`Frame::draw`] (per band) |
 //! | `ray/` | the ray renderer (feature `raycast`): `RayScene`, per-pixel and per-row ray casting, shaded at the hit; with `grid`, a uniform grid per object in caller storage |
-//! | `shade.rs` | the material model both renderers use |
+//! | `material.rs` | the material model both renderers use |
 //! | `builtin/` | the demo scenes as `const` data, shared by firmware and the host simulator (feature `demo`) |
 //!
 //! With feature `serde`, the description types that a scene file spells
@@ -48,7 +48,7 @@
 //! Light is one directional light with an ambient and a diffuse term:
 //! `I = ambient + diffuse·max(0, n·L)`, clamped to [0, 1] and quantized to
 //! `q = ⌊255·I⌋`; the pixel is the base color scaled by `q/255`
-//! ([`Shade::scale`](crate::raster::Shade::scale)).
+//! ([`ScalableColor::scale`](crate::raster::ScalableColor::scale)).
 //!
 //! - [`Material::Flat`]: `n` is the triangle's face normal, the same exact
 //!   integer direction of the quantized vertices on both paths. The raster
@@ -82,11 +82,11 @@ mod build;
 mod de;
 mod description;
 mod error;
+mod material;
 mod prepared;
 #[cfg(feature = "raycast")]
 mod ray;
 mod render;
-mod shade;
 
 #[cfg(feature = "demo")]
 pub mod builtin;
@@ -97,13 +97,13 @@ pub use description::{
     ProjectionSpec, Scene, SceneObject, SceneSphere, TextureMode, View, vec3,
 };
 pub use error::SceneError;
+pub use material::quantise_intensity;
 pub use prepared::{MeshError, Normals, PreparedMesh, PreparedObject, Storage, storage_len};
 #[cfg(feature = "grid")]
 pub use ray::{RayBuffers, RayStorage, RayTriangle};
 #[cfg(feature = "raycast")]
 pub use ray::{RaySample, RayScene};
 pub use render::{Frame, RasterStats, Renderer};
-pub use shade::quantise_intensity;
 
 use description::light_is_finite;
 

@@ -8,7 +8,7 @@
 //! [`PreparedMesh::new`] borrows slices that may just as well be `const`
 //! data in flash.
 
-use super::shade::{Lighting, face_cross, face_direction};
+use super::material::{Lighting, face_cross, face_direction};
 use super::{Color, Material, MeshData, Scene, SceneError};
 use crate::math::{Affine3, Vec3};
 use crate::pipeline::Cull;
@@ -572,7 +572,7 @@ impl Scene<'_> {
                 .mesh
                 .prepare(normals, mine)
                 .map_err(|error| SceneError::Mesh { object: o, error })?;
-            let pose = super::shade::pose::<S>(&src.pose);
+            let pose = super::material::pose::<S>(&src.pose);
             *out = PreparedObject::new(mesh, pose, src.material).map_err(|e| e.at_object(o))?;
         }
         Ok(&mut objects[..need.objects])

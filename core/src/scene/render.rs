@@ -15,8 +15,8 @@
 //! [`Renderer::with_far_clip`] asks for it, or a side plane's guard band) are rebuilt in view space and
 //! go through Sutherland–Hodgman clipping.
 
+use super::material::Lighting;
 use super::prepared::{ObjectFrame, PreparedMesh, PreparedObject};
-use super::shade::Lighting;
 use super::{Color, Light, Material, Scene, SceneError, View};
 #[cfg(feature = "perspective")]
 use crate::math::Vec2;
@@ -35,7 +35,9 @@ use crate::raster::AffineTexture;
 use crate::raster::Gouraud;
 #[cfg(feature = "perspective")]
 use crate::raster::PerspectiveTexture;
-use crate::raster::{DepthTest, FillOutcome, Flat, ScreenVertex, Shade, SpanShader, fill_polygon};
+use crate::raster::{
+    DepthTest, FillOutcome, Flat, ScalableColor, ScreenVertex, SpanShader, fill_polygon,
+};
 use crate::scalar::Scalar;
 use crate::target::{Rect, Target};
 #[cfg(feature = "texture")]
@@ -347,20 +349,20 @@ impl<S: Scalar> Tri<'_, '_, S> {
     /// visible.
     #[allow(clippy::too_many_arguments)]
     #[inline]
-    fn draw<T, Z, A, Sh, const K: usize>(
+    fn draw<T, Z, A, Sh, const VARYINGS: usize>(
         &self,
         target: &mut T,
         depth: &mut Z,
         stats: &mut RasterStats,
         tri: [u16; 3],
-        inside: impl Fn(u16, &MeshVertex<1>) -> [i32; K],
+        inside: impl Fn(u16, &MeshVertex<1>) -> [i32; VARYINGS],
         attr: impl Fn(u16) -> A,
-        shader: impl FnOnce(&[ScreenVertex<K>]) -> Sh,
+        shader: impl FnOnce(&[ScreenVertex<VARYINGS>]) -> Sh,
     ) where
         T: Target,
         Z: DepthTest,
-        A: Varyings<S, K>,
-        Sh: SpanShader<K, Color = T::Color>,
+        A: Varyings<S, VARYINGS>,
+        Sh: SpanShader<VARYINGS, Color = T::Color>,
     {
         stats.triangles += 1;
         let get = |k: u16| self.verts.get(k as usize).copied().unwrap_or_default();

@@ -1,7 +1,7 @@
 use super::builtin::{self, CUBE, CUBE_MESH};
 use super::*;
 use crate::math::Vec3;
-use crate::raster::{DepthBuffer, Shade};
+use crate::raster::{DepthBuffer, ScalableColor};
 use crate::scalar::{I16F16, Scalar};
 use crate::target::Framebuffer;
 use crate::texture::{Texture, TextureError};

@@ -1,5 +1,5 @@
 use super::*;
-use crate::raster::{Flat, NoDepth, Shade, fill_polygon};
+use crate::raster::{Flat, NoDepth, ScalableColor, fill_polygon};
 #[cfg(feature = "gouraud")]
 use crate::raster::{Gouraud, ScreenVertex};
 #[cfg(feature = "gouraud")]

@@ -24,8 +24,8 @@ use sightline::pipeline::{
     Intensity, MeshVertex, Pipeline, ScreenPolygon, Uv, UvPerspective, Varyings, Vertex,
 };
 use sightline::raster::{
-    AffineTexture, DepthBuffer, Flat, Gouraud, NoDepth, PerspectiveTexture, ScreenVertex, Shade,
-    fill_polygon,
+    AffineTexture, DepthBuffer, Flat, Gouraud, NoDepth, PerspectiveTexture, ScalableColor,
+    ScreenVertex, fill_polygon,
 };
 use sightline::scalar::{I16F16, Scalar};
 use sightline::scene::builtin::{self, BUNNY_NORMALS, BUNNY_POSITIONS, BUNNY_TRIANGLES};

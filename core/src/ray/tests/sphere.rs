@@ -106,7 +106,7 @@ fn random_against_reference<S: Scalar>() {
             rng.range(-1.2, 1.2) * r.to_f64(),
             rng.range(-1.2, 1.2) * r.to_f64(),
         );
-        let Some(d) = crate::ray::wide::sub3(target, q) else {
+        let Some(d) = crate::ray::checked::sub3(target, q) else {
             continue;
         };
         if d.max_abs() == S::ZERO {

@@ -33,7 +33,7 @@ use crate::ray::{
     Aabb, Grid, GridError, Intersect, Mailbox, Ray, SurfaceHit, Triangle, TriangleHit,
 };
 use crate::scalar::Scalar;
-use crate::scene::shade;
+use crate::scene::material;
 use crate::scene::{Scene, SceneError, View};
 
 /// Grid cells per triangle (λ; 2–4 is common for uniform grids).
@@ -196,7 +196,7 @@ impl<'a, S: Scalar> RayScene<'a, S> {
             let (i, rest) = core::mem::take(&mut items).split_at_mut(ITEMS_PER_TRIANGLE * n);
             items = rest;
             for (slot, &tri) in t.iter_mut().zip(mesh.triangles) {
-                let p = tri.map(|k| shade::position(mesh, obj.scale, k));
+                let p = tri.map(|k| material::position(mesh, obj.scale, k));
                 slot.triangle = Triangle::new(p[0], p[1], p[2]);
             }
             let grid = match &obj.bounds {

@@ -31,12 +31,12 @@ mod grid;
 #[cfg(feature = "grid")]
 pub use grid::{RayBuffers, RayStorage, RayTriangle};
 
-use super::shade::{self, Lighting};
+use super::material::{self, Lighting};
 #[cfg(feature = "sphere")]
 use super::vec3;
 use super::{Color, MAX_RAY_OBJECTS, Material, Scene, SceneError, View};
 use crate::math::{Affine3, Mat3, Vec3};
-use crate::raster::Shade;
+use crate::raster::ScalableColor;
 #[cfg(feature = "sphere")]
 use crate::ray::Sphere;
 use crate::ray::{Aabb, Ray, RayCamera, ShearedRay, Triangle, TriangleHit};
@@ -154,7 +154,7 @@ impl<'a, S: Scalar> RayScene<'a, S> {
         };
         let mut objects = heapless::Vec::new();
         for (o, obj) in scene.objects.iter().enumerate() {
-            let pose = shade::pose::<S>(&obj.pose);
+            let pose = material::pose::<S>(&obj.pose);
             let to_object = crate::solve::invert_affine(&pose.object_to_world())
                 .map_err(|_| SceneError::BadPose { object: o })?;
             let scale = S::from_f32(obj.mesh.scale);
@@ -322,7 +322,7 @@ impl<'a, S: Scalar> RayScene<'a, S> {
         }
         let (k, t) = hit?;
         let s = self.spheres.get(k)?;
-        let level = shade::quantise_intensity(self.light.intensity(s.normal_at(ray.at(t))));
+        let level = material::quantise_intensity(self.light.intensity(s.normal_at(ray.at(t))));
         Some(RaySample::Sphere { sphere: k, level })
     }
 
@@ -358,7 +358,7 @@ impl<'a, S: Scalar> RayScene<'a, S> {
             };
             let mesh = desc.mesh;
             for (t_i, &tri) in mesh.triangles.iter().enumerate() {
-                let p = tri.map(|k| shade::position(mesh, obj.scale, k));
+                let p = tri.map(|k| material::position(mesh, obj.scale, k));
                 let Some(h) = Triangle::new(p[0], p[1], p[2]).intersect_sheared(&sheared, S::ZERO)
                 else {
                     continue;
@@ -384,23 +384,23 @@ impl<'a, S: Scalar> RayScene<'a, S> {
         let w = [h.u, h.v, h.w];
         match desc.material {
             Material::Flat(_) => {
-                let level = shade::face_normal(mesh, &obj.rot, t)
-                    .map_or(0, |n| shade::quantise_intensity(self.light.intensity(n)));
+                let level = material::face_normal(mesh, &obj.rot, t)
+                    .map_or(0, |n| material::quantise_intensity(self.light.intensity(n)));
                 RaySample::Lit { object, level }
             }
             Material::Gouraud(_) => {
-                let i = shade::vertex_intensities(mesh, &obj.rot, &self.light, t);
-                let level = shade::quantise_intensity(i[0] * w[0] + i[1] * w[1] + i[2] * w[2]);
+                let i = material::vertex_intensities(mesh, &obj.rot, &self.light, t);
+                let level = material::quantise_intensity(i[0] * w[0] + i[1] * w[1] + i[2] * w[2]);
                 RaySample::Lit { object, level }
             }
             Material::Texture { .. } => {
-                let uv = t.map(|k| shade::uv::<S>(mesh, k));
+                let uv = t.map(|k| material::uv::<S>(mesh, k));
                 let u = uv[0].0 * w[0] + uv[1].0 * w[1] + uv[2].0 * w[2];
                 let v = uv[0].1 * w[0] + uv[1].1 * w[1] + uv[2].1 * w[2];
                 RaySample::Texel {
                     object,
-                    u: shade::texel(u),
-                    v: shade::texel(v),
+                    u: material::texel(u),
+                    v: material::texel(v),
                 }
             }
         }

@@ -526,7 +526,8 @@ fn unknown_fields_are_errors_everywhere() {
             "direction: (0.0, 1.0, 0.0), ambinet: 0.2",
             "5:41",
         ),
-        ("radius: 1.0", "radius: 1.0, color: 1", "7:54"),
+        // `colour`: the British spelling is not a field (the field is `color`).
+        ("radius: 1.0", "radius: 1.0, colour: 1", "7:54"),
         (
             "up: (0.0, 1.0, 0.0)",
             "up: (0.0, 1.0, 0.0), roll: 1.0",

@@ -418,7 +418,7 @@ mod tests {
     }
 
     #[test]
-    fn centre_is_the_middle_of_the_world_bounding_box() {
+    fn center_is_the_middle_of_the_world_bounding_box() {
         // Corridor: x ∈ [−2, 2], z ∈ [−24, 0].
         assert_eq!(center(&builtin::CORRIDOR), (0.0, -12.0));
     }

@@ -20,7 +20,7 @@
 //! 320×240 ([`RayCamera::from_camera`], so the ray of pixel (i, j) passes
 //! through the point the raster path projects to (i + ½, j + ½)).
 
-use crate::workload::{HEIGHT, Model, WIDTH, Workload, grey565, intensity_byte};
+use crate::workload::{HEIGHT, Model, WIDTH, Workload, gray565, intensity_byte};
 use embedded_graphics::pixelcolor::Rgb565;
 use sightline::camera::{Camera, Projection};
 use sightline::math::Vec3;
@@ -146,7 +146,7 @@ impl<S: Scalar + 'static> RayWorkload<S> {
         let colors = model
             .face_normals
             .iter()
-            .map(|&n| grey565(intensity_byte(ambient + diffuse * n.dot(l).max_of(S::ZERO))))
+            .map(|&n| gray565(intensity_byte(ambient + diffuse * n.dot(l).max_of(S::ZERO))))
             .collect();
         let tris: Vec<Tri<S>> = indices
             .iter()
@@ -256,7 +256,7 @@ impl<S: Scalar + 'static> RayWorkload<S> {
     /// Casts one frame into `color` (320×240, cleared to black first) and
     /// returns its statistics. `stamps` of the mailbox are per workload.
     pub fn render(&mut self, color: &mut [Rgb565]) -> RayStats {
-        let bg = grey565(0);
+        let bg = gray565(0);
         color.fill(bg);
         let mut stamps = core::mem::take(&mut self.stamps);
         let mut mailbox = Mailbox::new(&mut stamps);

@@ -49,7 +49,7 @@ pub enum Shading {
 /// (WORKLOADS.md's `(v>>3, v>>2, v>>3)` differs by at most one step per
 /// channel and costs the same).
 #[must_use]
-pub fn grey565(v: u8) -> Rgb565 {
+pub fn gray565(v: u8) -> Rgb565 {
     Rgb565::WHITE.scale(v)
 }
 
@@ -163,7 +163,7 @@ impl Default for Frame {
     fn default() -> Self {
         let n = WIDTH as usize * HEIGHT as usize;
         Self {
-            color: vec![grey565(0); n],
+            color: vec![gray565(0); n],
             depth: vec![u16::MAX; n],
         }
     }
@@ -202,7 +202,7 @@ impl<'m, S: Scalar> Workload<'m, S> {
         };
         // Near 0.5 and far 10 as glFrustum(−0.4, 0.4, −0.3, 0.3, 0.5, 10).
         let renderer =
-            Renderer::from_view(view, s(0.5), s(10.0), &light, grey565(0)).expect("valid pipeline");
+            Renderer::from_view(view, s(0.5), s(10.0), &light, gray565(0)).expect("valid pipeline");
         Self {
             renderer,
             object: [object],
@@ -259,7 +259,7 @@ impl Frame {
     /// The covered pixels of the last rendered frame.
     #[must_use]
     pub fn coverage(&self) -> Coverage {
-        let bg = grey565(0);
+        let bg = gray565(0);
         let mut pixels = 0;
         let mut bbox: Option<(u16, u16, u16, u16)> = None;
         for (i, &c) in self.color.iter().enumerate() {

@@ -147,7 +147,7 @@ fn workload_frames_cover_the_documented_range() {
         for k in [0, 50, 100, 150] {
             let drawn = wl.frame(k, &mut color, &mut depth, &mut scratch);
             assert!(drawn > 1000, "frame {k}: {drawn} triangles");
-            let bg = frames::grey565(0);
+            let bg = frames::gray565(0);
             let mut n = 0;
             for (i, &c) in color.iter().enumerate() {
                 if c != bg {

@@ -4,12 +4,12 @@
 
 use embedded_graphics::pixelcolor::Rgb565;
 use sightline_tests::ray_workload::{RayMode, RayWorkload};
-use sightline_tests::workload::{Frame, HEIGHT, Model, Shading, WIDTH, Workload, grey565};
+use sightline_tests::workload::{Frame, HEIGHT, Model, Shading, WIDTH, Workload, gray565};
 
 fn ray_frame(model: &Model<f32>, mode: RayMode) -> (Vec<Rgb565>, u32) {
     let mut w = RayWorkload::new(model, mode);
     assert_eq!(w.mode(), mode);
-    let mut px = vec![grey565(7); WIDTH as usize * HEIGHT as usize];
+    let mut px = vec![gray565(7); WIDTH as usize * HEIGHT as usize];
     let hits = w.render(&mut px).hits;
     (px, hits)
 }
@@ -30,7 +30,7 @@ fn three_searches_identical_and_coverage_matches_raster() {
     let mut raster = Workload::<f32>::new(&model, Shading::Flat);
     let mut frame = Frame::default();
     raster.render(0, 1, &mut frame);
-    let bg = grey565(0);
+    let bg = gray565(0);
     let (w, h) = (WIDTH as i32, HEIGHT as i32);
     let covered = |px: &[Rgb565], x: i32, y: i32| {
         x >= 0 && y >= 0 && x < w && y < h && px[(y * w + x) as usize] != bg

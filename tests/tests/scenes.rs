@@ -101,7 +101,7 @@ impl Agreement {
 ///   level of the color ramp);
 /// - a textured surface showing texel `(u, v)`: `raster` is the color of
 ///   a texel `(u + du, v + dv)` with `|du|, |dv| ≤ 1` (one texel, the 3×3
-///   neighbourhood; a neighbor of the same color counts, as it must
+///   neighborhood; a neighbor of the same color counts, as it must
 ///   when only colors are compared);
 /// - the background or a sphere: never (only equal counts).
 fn within_one_step(scene: &Scene<'_>, sample: RaySample, raster: Color) -> bool {

@@ -70,7 +70,7 @@ fn normalizer<const D: usize>(pts: &[[f64; D]], target: f64) -> ([f64; D], f64) 
 
 /// DLT in the representation `T`: builds the normal equations of the 2N×11
 /// system (p₁₂ fixed to 1) in `T`, solves them with Gaussian elimination,
-/// and returns P in f64 (denormalised), or the solver's error.
+/// and returns P in f64 (denormalized), or the solver's error.
 fn dlt<T: Scalar>(
     world: &[[f64; 3]],
     pixels: &[[f64; 2]],
@@ -156,7 +156,7 @@ fn reprojection(p: &[[f64; 4]; 3], world: &[[f64; 3]], pixels: &[[f64; 2]]) -> f
 }
 
 #[test]
-fn camera_recovery_needs_normalised_data_in_f32() {
+fn camera_recovery_needs_normalized_data_in_f32() {
     let (world, pixels, _) = scene();
     let mut report = Vec::new();
     for (name, normalize) in [("raw", false), ("normalized", true)] {

@@ -36,7 +36,7 @@ fn flat_triangle_pattern() {
 }
 
 #[test]
-fn edges_through_pixel_centres_follow_top_left_rule() {
+fn edges_through_pixel_centers_follow_top_left_rule() {
     // A square whose edges pass exactly through pixel centers 1.5 and 4.5:
     // the left and top edges are drawn, the right and bottom are not.
     let mut t = MockTarget::new(7, 7);

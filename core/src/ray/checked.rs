@@ -113,7 +113,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn dop_wide_recovers_cancelled_sign() {
+    fn diff_of_products_wide_recovers_cancelled_sign() {
         // (1 + 2⁻³⁰)² − (1 + 2⁻²⁹) = 2⁻⁶⁰, lost entirely in plain f64.
         let a = 1.0 + 2f64.powi(-30);
         let c = 1.0 + 2f64.powi(-29);

@@ -45,7 +45,7 @@
 //! polygon when the polygon lies on the edge's +x side, or, for a
 //! horizontal edge, on its +y side. Left and bottom edges are closed,
 //! right and top edges open, like the top-left fill rule mirrored for
-//! y-up. For a vertex, the neighbourhood just to its right (and then just
+//! y-up. For a vertex, the neighborhood just to its right (and then just
 //! above) decides. Consequences:
 //! - Two polygons that share an edge with opposite directions (as in any
 //!   consistently oriented partition of the plane) never both claim a

@@ -60,7 +60,7 @@ impl core::error::Error for RayCameraError {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RayCamera<S> {
     /// Screen center O (world), the point at screen position `center`.
-    pub screen_centre: Vec3<S>,
+    pub screen_center: Vec3<S>,
     /// World vector from one pixel to the next to the right.
     pub u: Vec3<S>,
     /// World vector from one pixel to the next downward.
@@ -81,14 +81,14 @@ impl<S: Scalar> RayCamera<S> {
     /// # Errors
     /// [`RayCameraError::NonFinite`], [`RayCameraError::ZeroVector`].
     pub fn new(
-        screen_centre: Vec3<S>,
+        screen_center: Vec3<S>,
         u: Vec3<S>,
         v: Vec3<S>,
         viewer: Vec3<S>,
         width: u16,
         height: u16,
     ) -> Result<Self, RayCameraError> {
-        if !(screen_centre.is_finite() && u.is_finite() && v.is_finite() && viewer.is_finite()) {
+        if !(screen_center.is_finite() && u.is_finite() && v.is_finite() && viewer.is_finite()) {
             return Err(RayCameraError::NonFinite);
         }
         if u.max_abs() == S::ZERO || v.max_abs() == S::ZERO {
@@ -96,7 +96,7 @@ impl<S: Scalar> RayCamera<S> {
         }
         let half = |n: u16| S::from_i32(n as i32) * S::HALF;
         Ok(Self {
-            screen_centre,
+            screen_center,
             u,
             v,
             viewer,
@@ -150,7 +150,7 @@ impl<S: Scalar> RayCamera<S> {
     /// `O + (x_s − c_x)·u + (y_s − c_y)·v`.
     #[must_use]
     pub fn screen_point(&self, x_s: S, y_s: S) -> Vec3<S> {
-        self.screen_centre + self.u * (x_s - self.center.x) + self.v * (y_s - self.center.y)
+        self.screen_center + self.u * (x_s - self.center.x) + self.v * (y_s - self.center.y)
     }
 
     /// The ray from V through screen position (x_s, y_s); `None` when V

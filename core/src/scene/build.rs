@@ -195,7 +195,7 @@ pub const fn quantize_positions<const N: usize>(positions: [[f32; 3]; N]) -> Qua
 /// [`MeshData::normals`](super::MeshData::normals) stores, at compile time
 /// when called in a `const` or `static`. Components are rounded to the
 /// nearest unit (ties away from zero) and clamped to ±32767; the vectors
-/// are not renormalised (the renderer normalizes after transforming).
+/// are not renormalized (the renderer normalizes after transforming).
 /// A non-finite component is a compile error in a `const`.
 ///
 /// ```

@@ -15,7 +15,7 @@ use crate::transform::{Euler, Pose};
 /// `I` (any real) → `⌊255·clamp(I, 0, 1)⌋` as the raster path's intensity
 /// varying does it: 255·I in 16.16 fixed point, then the integer part.
 #[must_use]
-pub fn quantise_intensity<S: Scalar>(i: S) -> u8 {
+pub fn quantize_intensity<S: Scalar>(i: S) -> u8 {
     let v = (i.clamp_to(S::ZERO, S::ONE) * S::from_i32(255))
         .to_subpixel(16)
         .unwrap_or(0);

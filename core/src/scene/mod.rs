@@ -97,7 +97,7 @@ pub use description::{
     ProjectionSpec, Scene, SceneObject, SceneSphere, TextureMode, View, vec3,
 };
 pub use error::SceneError;
-pub use material::quantise_intensity;
+pub use material::quantize_intensity;
 pub use prepared::{MeshError, Normals, PreparedMesh, PreparedObject, Storage, storage_len};
 #[cfg(feature = "grid")]
 pub use ray::{RayBuffers, RayStorage, RayTriangle};

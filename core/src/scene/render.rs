@@ -459,7 +459,7 @@ impl<S: Scalar> Frame<'_, '_, S> {
                     for (f, &tri) in mesh.triangles().iter().enumerate() {
                         let lit = |_: &[ScreenVertex<0>]| {
                             let n = faces.get(f).copied().unwrap_or_default();
-                            Flat(color.scale(super::quantise_intensity(light.intensity(n))))
+                            Flat(color.scale(super::quantize_intensity(light.intensity(n))))
                         };
                         t.draw(target, depth, stats, tri, |_, _| [], |_| (), lit);
                     }

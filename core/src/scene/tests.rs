@@ -45,13 +45,13 @@ fn builtin_scenes_validate() {
 }
 
 #[test]
-fn quantise_matches_floor_of_255_i() {
-    assert_eq!(quantise_intensity(0.0f32), 0);
-    assert_eq!(quantise_intensity(1.0f32), 255);
-    assert_eq!(quantise_intensity(2.0f32), 255);
-    assert_eq!(quantise_intensity(-1.0f32), 0);
-    assert_eq!(quantise_intensity(0.5f32), 127);
-    assert_eq!(quantise_intensity(I16F16::from_f32(0.5)), 127);
+fn quantize_matches_floor_of_255_i() {
+    assert_eq!(quantize_intensity(0.0f32), 0);
+    assert_eq!(quantize_intensity(1.0f32), 255);
+    assert_eq!(quantize_intensity(2.0f32), 255);
+    assert_eq!(quantize_intensity(-1.0f32), 0);
+    assert_eq!(quantize_intensity(0.5f32), 127);
+    assert_eq!(quantize_intensity(I16F16::from_f32(0.5)), 127);
 }
 
 #[test]
@@ -72,7 +72,7 @@ fn flat_cube_agrees_between_paths_in_f32_and_fixed() {
 }
 
 #[test]
-fn flat_colour_is_base_scaled_by_quantised_intensity() {
+fn flat_color_is_base_scaled_by_quantized_intensity() {
     // Looking straight down at the top face of an unrotated cube: n = +Y.
     let objects = [SceneObject {
         mesh: &CUBE_MESH,
@@ -94,7 +94,7 @@ fn flat_colour_is_base_scaled_by_quantised_intensity() {
         spheres: &[],
         ..CUBE
     };
-    let want = Color::new(31, 63, 31).scale(quantise_intensity(0.5f32));
+    let want = Color::new(31, 63, 31).scale(quantize_intensity(0.5f32));
     assert_eq!(raster_image::<f32>(&scene, 8, 8)[4 * 8 + 4], want);
     assert_eq!(ray_image::<f32>(&scene, 8, 8)[4 * 8 + 4], want);
 }

@@ -85,7 +85,7 @@ proptest! {
 }
 
 #[test]
-fn fill_with_keeps_colours_aligned_when_clipped() {
+fn fill_with_keeps_colors_aligned_when_clipped() {
     let mut buf = [0u8; 4];
     let mut fb = Framebuffer::new(&mut buf, 4, 1, 4).unwrap();
     let mut k = 0;

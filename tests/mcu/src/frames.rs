@@ -343,7 +343,7 @@ pub struct Workload<'a, S> {
 }
 
 /// The workload's gray: `v = floor(255·I)`, RGB565 `(v>>3, v>>2, v>>3)`.
-pub fn grey565(v: u8) -> Color {
+pub fn gray565(v: u8) -> Color {
     Rgb565::new(v >> 3, v >> 2, v >> 3)
 }
 
@@ -410,7 +410,7 @@ impl<'a, S: Scalar> Workload<'a, S> {
         };
         // Near 0.5 and far 10 as glFrustum(−0.4, 0.4, −0.3, 0.3, 0.5, 10).
         let renderer =
-            Renderer::from_view(view, S::from_f32(0.5), S::from_i32(10), &light, grey565(0))
+            Renderer::from_view(view, S::from_f32(0.5), S::from_i32(10), &light, gray565(0))
                 .ok()?;
         Some(Self {
             renderer,

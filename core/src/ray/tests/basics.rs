@@ -140,7 +140,7 @@ fn camera_rays_match_projection<S: Scalar>() {
 }
 
 /// The chapter's form: pixel (i, j) maps to O + (i + ½ − w/2)·u + (j + ½ − h/2)·v.
-fn chapter_camera_pixel_centres<S: Scalar>() {
+fn chapter_camera_pixel_centers<S: Scalar>() {
     let o = v3::<S>(0.0, 0.0, 10.0);
     let rc = RayCamera::new(o, Vec3::X, v3(0.0, -1.0, 0.0), Vec3::ZERO, 4, 2).unwrap();
     let r = rc.pixel_ray(0, 0).unwrap();
@@ -165,7 +165,7 @@ per_scalar!(
     plane_parallel_and_in_plane_miss,
     plane_from_points,
     camera_rays_match_projection,
-    chapter_camera_pixel_centres,
+    chapter_camera_pixel_centers,
     extreme_inputs_never_panic_or_nan,
     plane_exactly_in_plane_rays_miss,
 );

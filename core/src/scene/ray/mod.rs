@@ -322,7 +322,7 @@ impl<'a, S: Scalar> RayScene<'a, S> {
         }
         let (k, t) = hit?;
         let s = self.spheres.get(k)?;
-        let level = material::quantise_intensity(self.light.intensity(s.normal_at(ray.at(t))));
+        let level = material::quantize_intensity(self.light.intensity(s.normal_at(ray.at(t))));
         Some(RaySample::Sphere { sphere: k, level })
     }
 
@@ -385,12 +385,12 @@ impl<'a, S: Scalar> RayScene<'a, S> {
         match desc.material {
             Material::Flat(_) => {
                 let level = material::face_normal(mesh, &obj.rot, t)
-                    .map_or(0, |n| material::quantise_intensity(self.light.intensity(n)));
+                    .map_or(0, |n| material::quantize_intensity(self.light.intensity(n)));
                 RaySample::Lit { object, level }
             }
             Material::Gouraud(_) => {
                 let i = material::vertex_intensities(mesh, &obj.rot, &self.light, t);
-                let level = material::quantise_intensity(i[0] * w[0] + i[1] * w[1] + i[2] * w[2]);
+                let level = material::quantize_intensity(i[0] * w[0] + i[1] * w[1] + i[2] * w[2]);
                 RaySample::Lit { object, level }
             }
             Material::Texture { .. } => {

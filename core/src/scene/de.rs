@@ -2,6 +2,10 @@
 //! is read (feature `serde`), so that a format with positions (RON, JSON)
 //! reports the offending number where it stands. No allocation: messages
 //! are formatted into the deserializer's own error.
+//!
+//! [`finite`] and [`finite3`] are public for a reader's own types
+//! (`#[serde(deserialize_with = "sightline::scene::de::finite")]`), as the
+//! simulator's scene files use them.
 
 use serde::de::{Deserialize, Deserializer, Error};
 
@@ -21,13 +25,19 @@ impl<'de> Deserialize<'de> for Finite {
     }
 }
 
-/// A finite `f32`.
-pub(super) fn finite<'de, D: Deserializer<'de>>(d: D) -> Result<f32, D::Error> {
+/// A finite `f32`; NaN and ±∞ are an error at the number.
+///
+/// # Errors
+/// The deserializer's error, or a custom one for a non-finite number.
+pub fn finite<'de, D: Deserializer<'de>>(d: D) -> Result<f32, D::Error> {
     Finite::deserialize(d).map(|f| f.0)
 }
 
 /// Three finite `f32`s; an error stands at the first bad one.
-pub(super) fn finite3<'de, D: Deserializer<'de>>(d: D) -> Result<[f32; 3], D::Error> {
+///
+/// # Errors
+/// As [`finite`].
+pub fn finite3<'de, D: Deserializer<'de>>(d: D) -> Result<[f32; 3], D::Error> {
     <[Finite; 3]>::deserialize(d).map(|a| a.map(|f| f.0))
 }
 

@@ -79,7 +79,7 @@
 
 mod build;
 #[cfg(feature = "serde")]
-mod de;
+pub mod de;
 mod description;
 mod error;
 mod material;

@@ -116,13 +116,7 @@ impl<S: Scalar> Renderer<S> {
     pub fn new(scene: &Scene<'_>, width: u16, height: u16) -> Result<Self, SceneError> {
         scene.validate_view()?;
         let view = scene.view::<S>(width, height)?;
-        Self::from_view(
-            view,
-            S::from_f32(scene.near),
-            S::from_f32(scene.far),
-            &scene.light,
-            scene.background,
-        )
+        Self::for_scene(scene, view)
     }
 
     /// As [`Renderer::new`], but seen through a `camera` you built
@@ -142,6 +136,11 @@ impl<S: Scalar> Renderer<S> {
     ) -> Result<Self, SceneError> {
         scene.validate_view_except_camera()?;
         let view = scene.view_with(camera, width, height)?;
+        Self::for_scene(scene, view)
+    }
+
+    /// The scene's depth range, light and background seen through `view`.
+    fn for_scene(scene: &Scene<'_>, view: View<S>) -> Result<Self, SceneError> {
         Self::from_view(
             view,
             S::from_f32(scene.near),

@@ -20,29 +20,9 @@ use sightline::scene::{CameraSpec, Light, TextureMode};
 /// `[r, g, b]` in 0..=255.
 pub type Rgb = [u8; 3];
 
-/// A number that must be finite; RON places the error at the number.
-struct Finite(f32);
-
-impl<'de> Deserialize<'de> for Finite {
-    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        let x = f32::deserialize(d)?;
-        if x.is_finite() {
-            Ok(Self(x))
-        } else {
-            Err(D::Error::custom(format!(
-                "expected a finite number, found {x}"
-            )))
-        }
-    }
-}
-
-fn finite<'de, D: Deserializer<'de>>(d: D) -> Result<f32, D::Error> {
-    Finite::deserialize(d).map(|f| f.0)
-}
-
-fn finite3<'de, D: Deserializer<'de>>(d: D) -> Result<[f32; 3], D::Error> {
-    <[Finite; 3]>::deserialize(d).map(|a| a.map(|f| f.0))
-}
+// Finite numbers are checked by core's own serde helpers, so the error
+// stands at the number in the file.
+use sightline::scene::de::{finite, finite3};
 
 fn positive<'de, D: Deserializer<'de>>(d: D, what: &str) -> Result<f32, D::Error> {
     let x = finite(d)?;

@@ -200,6 +200,32 @@ impl<S: Scalar> Pipeline<S> {
     }
 }
 
+impl<S: Scalar> Pipeline<S> {
+    /// [`Self::keep`] for a triangle whose three vertices are all inside
+    /// the volume (outcode 0), given by their 28.4 screen positions.
+    ///
+    /// With a viewport whose guard-band rectangle lies within ±2^14 (any
+    /// viewport up to 990 pixels with the 16-pixel guard band), the edge
+    /// vectors are below 2^15, each product below 2^30 and their
+    /// difference below 2^31: an exact `i32` cross product, two 32-bit
+    /// multiplies. Larger viewports take [`Self::keep`].
+    #[inline]
+    #[must_use]
+    pub(crate) fn keep_inside(&self, a: (i32, i32), b: (i32, i32), c: (i32, i32)) -> bool {
+        if self.cull == Cull::None {
+            return true;
+        }
+        if !self.guard_small {
+            let v = |p: (i32, i32)| ScreenVertex::new(p.0, p.1, 0, []);
+            return self.keep(&[v(a), v(b), v(c)]);
+        }
+        let (e1x, e1y) = (b.0 - a.0, b.1 - a.1);
+        let (e2x, e2y) = (c.0 - a.0, c.1 - a.1);
+        let front = e1x * e2y - e1y * e2x < 0;
+        !((self.cull == Cull::Back && !front) || (self.cull == Cull::Front && front))
+    }
+}
+
 /// Front-facing (negative shoelace area, y down) for any polygon.
 fn shoelace_front<const VARYINGS: usize>(
     screen: &[ScreenVertex<VARYINGS>],

@@ -171,6 +171,10 @@ pub struct Pipeline<S> {
     /// The side planes as a 28.4 screen rectangle `[x0, x1] × [y0, y1]`
     /// (viewport plus guard band), for outcodes of projected vertices.
     guard_rect: [i32; 4],
+    /// Every coordinate of `guard_rect` lies within ±(2^14 − 1): a
+    /// triangle with all three vertices inside the volume then has edge
+    /// vectors below 2^15, and its winding is an exact `i32` cross product.
+    guard_small: bool,
     /// The far plane, for [`with_far_clip`](Self::with_far_clip).
     #[cfg(feature = "clip-far")]
     far_plane: Plane<S>,
@@ -286,6 +290,7 @@ impl<S: Scalar> Pipeline<S> {
             near,
             cull: Cull::None,
             guard_rect,
+            guard_small: guard_rect.iter().all(|c| c.unsigned_abs() < 1 << 14),
             #[cfg(feature = "clip-far")]
             far_plane: far_p,
         })

@@ -963,3 +963,44 @@ fn huge_coordinates_clip_inside_f32() {
 fn huge_coordinates_clip_inside_f64() {
     huge_coordinates_clip_inside::<f64>();
 }
+
+/// The in-volume cull test (`keep_inside`: i32 cross product on small
+/// viewports) decides as the general one (`keep`) for every triangle in
+/// the guard-band rectangle, for both cull modes, on a viewport that takes
+/// the i32 path (990 px wide) and one that does not (4000 px).
+#[test]
+fn keep_inside_agrees_with_keep() {
+    for (w, small) in [(990u16, true), (4000u16, false)] {
+        let p = Pipeline::<f32>::new(Projection::perspective(400.0, w, 200), w, 200, 1.0, 100.0, 16.0)
+            .unwrap();
+        assert_eq!(p.guard_small, small, "width {w}");
+        let [x0, x1, y0, y1] = p.guard_rect;
+        let mut r = 0x1234_5678_u32;
+        let mut next = |lo: i32, hi: i32| {
+            r ^= r << 13;
+            r ^= r >> 17;
+            r ^= r << 5;
+            lo + (r % (hi - lo + 1) as u32) as i32
+        };
+        for cull in [Cull::Back, Cull::Front, Cull::None] {
+            let p = p.with_cull(cull);
+            for i in 0..20_000 {
+                // Corners of the rectangle too: the extreme edge vectors.
+                let pt = |next: &mut dyn FnMut(i32, i32) -> i32| {
+                    if i % 4 == 0 {
+                        (if next(0, 1) == 0 { x0 } else { x1 }, if next(0, 1) == 0 { y0 } else { y1 })
+                    } else {
+                        (next(x0, x1), next(y0, y1))
+                    }
+                };
+                let (a, b, c) = (pt(&mut next), pt(&mut next), pt(&mut next));
+                let v = |q: (i32, i32)| ScreenVertex::new(q.0, q.1, 0, []);
+                assert_eq!(
+                    p.keep_inside(a, b, c),
+                    p.keep(&[v(a), v(b), v(c)]),
+                    "{cull:?} {a:?} {b:?} {c:?} (width {w})"
+                );
+            }
+        }
+    }
+}

@@ -122,13 +122,53 @@ pub(super) struct EdgeStepper32 {
 /// guard band.
 pub const SMALL_COORD_LIMIT: i32 = 1 << 14;
 
-/// `ceil(n / d)` and its remainder in `[0, d)`, for `d > 0`, in `i32`.
-/// (A 16-step shift-and-subtract division was tried here: on ARMv6-M it
-/// cost W1 10 % more than the library's 32-bit division.)
+/// `n / d` and `n % d` for `d > 0`, by shift and subtract, in as many
+/// steps as the quotient has bits.
+///
+/// ARMv6-M has no divide instruction. The library's 32-bit division
+/// normalises both operands first and cost about 210 instructions per
+/// call in the W1 frame; the edge set-up's quotients are small (a slope,
+/// and a column offset of about one slope, see [`EdgeStepper32::new`]),
+/// so this loop usually ends after a few steps. (A fixed 16-step loop was
+/// tried before and cost W1 10 % more than the library.)
+#[inline]
+fn udiv_small(mut n: u32, d: u32) -> (u32, u32) {
+    let (mut s, mut bit) = (d, 1u32);
+    // `s ≤ n/2` keeps `2s ≤ n`: no overflow.
+    while s <= n >> 1 {
+        s <<= 1;
+        bit <<= 1;
+    }
+    let mut q = 0;
+    loop {
+        if n >= s {
+            n -= s;
+            q |= bit;
+        }
+        if bit == 1 {
+            return (q, n);
+        }
+        s >>= 1;
+        bit >>= 1;
+    }
+}
+
+/// `ceil(n / d)` and its remainder `q·d − n` in `[0, d)`, for `d > 0`, in
+/// `i32`.
 #[inline]
 fn ceil_div32(n: i32, d: i32) -> (i32, i32) {
-    let (q, r) = (n / d, n % d);
-    if r > 0 { (q + 1, d - r) } else { (q, -r) }
+    // d > 0, so `d as u32` is d; |n| ≤ 2^31 fits in u32, and the quotient
+    // of |n| by d ≥ 1 fits in i32 unless n = i32::MIN and d = 1, where
+    // `-q` wraps to the right value.
+    let (q, r) = udiv_small(n.unsigned_abs(), d as u32);
+    let (q, r) = (q as i32, r as i32);
+    if n >= 0 {
+        // n = q·d + r.
+        if r > 0 { (q + 1, d - r) } else { (q, 0) }
+    } else {
+        // n = −(q·d + r): the ceiling is −q, with remainder r.
+        (q.wrapping_neg(), r)
+    }
 }
 
 impl EdgeStepper32 {
@@ -147,9 +187,17 @@ impl EdgeStepper32 {
         }
         let dx = x1 - x0;
         let yc = row * 16 + 8;
-        let n = (x0 - 8) * dy + (yc - y0) * dx;
+        // N = 16·c·dy + m with c = first_center(x₀), so the first column is
+        // c + ceil(m / D) with the same remainder. As (x₀ − 8) − 16c lies
+        // in (−16, 0], |m| < 16·dy + (y_c − y₀)·|dx|: when the walk starts
+        // on the vertex's own row (y_c − y₀ < 16), m's quotient is about
+        // one slope, not a whole column number, and the division is short.
+        // |m| < 2^19 + (2^15 + 8)·2^15 < 2^31.
+        let c = first_center(x0);
+        let m = ((x0 - 8) - 16 * c) * dy + (yc - y0) * dx;
         let d = 16 * dy;
-        let (x, r) = ceil_div32(n, d);
+        let (x, r) = ceil_div32(m, d);
+        let x = c + x;
         let (q_step, r_step) = ceil_div32(16 * dx, d);
         Self {
             x,
@@ -168,6 +216,94 @@ impl EdgeStepper32 {
         if self.r >= self.d {
             self.x -= 1;
             self.r -= self.d;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Exact i64 reference for `ceil_div32`.
+    fn ceil_ref(n: i32, d: i32) -> (i32, i32) {
+        let (n, d) = (n as i64, d as i64);
+        let q = n.div_euclid(d) + i64::from(n.rem_euclid(d) != 0);
+        (q as i32, (q * d - n) as i32)
+    }
+
+    #[test]
+    fn ceil_div32_matches_exact_division() {
+        let ns = [
+            0,
+            1,
+            -1,
+            15,
+            16,
+            17,
+            -16,
+            -17,
+            1 << 30,
+            (1 << 30) + 12345,
+            -(1 << 30),
+            i32::MAX,
+            i32::MIN + 1,
+            1_619_999_999,
+            -1_619_999_999,
+        ];
+        let ds = [1, 2, 3, 16, 17, 48, 1000, (1 << 19) - 1, 1 << 19, i32::MAX];
+        for &n in &ns {
+            for &d in &ds {
+                assert_eq!(ceil_div32(n, d), ceil_ref(n, d), "n = {n}, d = {d}");
+            }
+        }
+        // A deterministic sweep (xorshift) over the set-up's ranges.
+        let mut x = 0x2545_f491_u32;
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            let n = x as i32;
+            let d = ((x.rotate_left(11) >> (x & 15)) | 1) as i32 & 0x7fff_ffff;
+            let d = d.max(1);
+            assert_eq!(ceil_div32(n, d), ceil_ref(n, d), "n = {n}, d = {d}");
+        }
+    }
+
+    /// The 32-bit stepper gives the same columns and remainders as the
+    /// 64-bit one on every row, for edges anywhere in its range and walks
+    /// started on any row.
+    #[test]
+    fn stepper32_matches_stepper64() {
+        let lim = SMALL_COORD_LIMIT;
+        let mut x = 0x9e37_79b9_u32;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            x
+        };
+        let coord = |r: u32, scale: u32| ((r % (2 * scale + 1)) as i32) - scale as i32;
+        for case in 0..20_000 {
+            // Small triangles near the origin, and edges across the range.
+            let scale = if case % 2 == 0 { 400 } else { lim as u32 };
+            let (x0, y0) = (coord(next(), scale), coord(next(), scale));
+            let (x1, y1) = (coord(next(), scale), coord(next(), scale));
+            let (first, last) = (first_center(y0), first_center(y1));
+            if first >= last {
+                continue;
+            }
+            let start = first + (next() % (last - first) as u32) as i32;
+            let mut a = EdgeStepper::new(x0, y0, x1, y1, start);
+            let mut b = EdgeStepper32::new(x0, y0, x1, y1, start);
+            for row in start..last.min(start + 64) {
+                assert_eq!(
+                    (a.x, a.r),
+                    (b.x as i64, b.r as i64),
+                    "edge ({x0}, {y0}) -> ({x1}, {y1}), row {row}, from {start}"
+                );
+                a.step();
+                b.step();
+            }
         }
     }
 }

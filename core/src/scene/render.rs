@@ -374,12 +374,18 @@ impl<S: Scalar> Tri<'_, '_, S> {
             if bottom <= self.rows.0 || top >= self.rows.1 {
                 return;
             }
-            let s = [(tri[0], a), (tri[1], b), (tri[2], c)]
-                .map(|(k, v)| ScreenVertex::new(v.screen.x, v.screen.y, v.screen.z, inside(k, &v)));
-            if !self.pipe.keep(&s) {
+            // Culled before the varyings are gathered; the vertices are
+            // built in place (an array `map` here compiled to two memcpy
+            // calls per triangle on ARMv6-M).
+            let xy = |v: &MeshVertex<1>| (v.screen.x, v.screen.y);
+            if !self.pipe.keep_inside(xy(&a), xy(&b), xy(&c)) {
                 stats.culled += 1;
                 return;
             }
+            let sv = |k: u16, v: &MeshVertex<1>| {
+                ScreenVertex::new(v.screen.x, v.screen.y, v.screen.z, inside(k, v))
+            };
+            let s = [sv(tri[0], &a), sv(tri[1], &b), sv(tri[2], &c)];
             fill_polygon(target, depth, &shader(&s), &s)
         } else if a.outcode & b.outcode & c.outcode & !OUTCODE_UNUSABLE != 0 {
             return;

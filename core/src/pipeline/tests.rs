@@ -971,8 +971,15 @@ fn huge_coordinates_clip_inside_f64() {
 #[test]
 fn keep_inside_agrees_with_keep() {
     for (w, small) in [(990u16, true), (4000u16, false)] {
-        let p = Pipeline::<f32>::new(Projection::perspective(400.0, w, 200), w, 200, 1.0, 100.0, 16.0)
-            .unwrap();
+        let p = Pipeline::<f32>::new(
+            Projection::perspective(400.0, w, 200),
+            w,
+            200,
+            1.0,
+            100.0,
+            16.0,
+        )
+        .unwrap();
         assert_eq!(p.guard_small, small, "width {w}");
         let [x0, x1, y0, y1] = p.guard_rect;
         let mut r = 0x1234_5678_u32;
@@ -988,7 +995,10 @@ fn keep_inside_agrees_with_keep() {
                 // Corners of the rectangle too: the extreme edge vectors.
                 let pt = |next: &mut dyn FnMut(i32, i32) -> i32| {
                     if i % 4 == 0 {
-                        (if next(0, 1) == 0 { x0 } else { x1 }, if next(0, 1) == 0 { y0 } else { y1 })
+                        (
+                            if next(0, 1) == 0 { x0 } else { x1 },
+                            if next(0, 1) == 0 { y0 } else { y1 },
+                        )
                     } else {
                         (next(x0, x1), next(y0, y1))
                     }

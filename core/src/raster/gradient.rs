@@ -110,40 +110,79 @@ impl Gradient {
         // One pixel is 16 units of 28.4: step = gx·16 >> EXTRA, rounded.
         let step = if n == 0 { 0 } else { self.step };
         let pixel_range = 1 << 16;
-        let (start, end) =
-            if self.small && x.abs() < pixel_range && y.abs() < pixel_range && len < 1 << 16 {
-                // See `small`; the span is clipped to the target, so
-                // n < 2^16 and |step·n| < 2^44.
-                let (v, run) = if self.narrow {
-                    // The same products, as 32×32→64 multiplies: |px|,
-                    // |py| < 2^29 here, |step| < 2^27, n < 2^16.
-                    let mul = crate::scalar::widening_mul;
-                    (
-                        self.base + mul(self.gx as i32, px as i32) + mul(self.gy as i32, py as i32),
-                        mul(step as i32, n as i32),
-                    )
-                } else {
-                    (self.base + self.gx * px + self.gy * py, step * n)
-                };
-                let start = (v + (1 << (EXTRA - 1))) >> EXTRA;
-                (start, start + run)
-            } else {
-                let v = self
-                    .base
-                    .saturating_add(self.gx.saturating_mul(px))
-                    .saturating_add(self.gy.saturating_mul(py));
-                let start = v.saturating_add(1 << (EXTRA - 1)) >> EXTRA;
-                (start, start.saturating_add(step.saturating_mul(n)))
-            };
+        let (start, end) = if self.small
+            && self.narrow
+            && x.abs() < pixel_range
+            && y.abs() < pixel_range
+            && len < 1 << 16
+        {
+            // See `small` and `narrow`: |px|, |py| < 2^29 here,
+            // |step| < 2^27 and n < 2^16 (the span is clipped to the
+            // target), so every product is a 32×32→64 multiply.
+            let mul = crate::scalar::widening_mul;
+            let v = self.base + mul(self.gx as i32, px as i32) + mul(self.gy as i32, py as i32);
+            let start = (v + (1 << (EXTRA - 1))) >> EXTRA;
+            (start, start + mul(step as i32, n as i32))
+        } else {
+            self.wide_ends(x, y, len, px, py, step, n)
+        };
         let (lo64, hi64) = (lo as i64, hi as i64);
         if start >= lo64 && start <= hi64 && end >= lo64 && end <= hi64 {
             // In range at both ends, hence everywhere between; |step| ≤ hi − lo.
             return (start as i32, step as i32);
         }
-        let s = start.clamp(lo64, hi64);
-        let e = end.clamp(lo64, hi64);
-        let step = if n > 0 { (e - s) / n } else { 0 };
-        (s as i32, step as i32)
+        clamped(start, end, n, lo64, hi64)
+    }
+}
+
+/// The span's ends clamped into `[lo, hi]` and the step between them.
+///
+/// Out of line on purpose: inlined, LLVM evaluated the 64-bit division on
+/// every span of more than one pixel (it may speculate a division by a
+/// divisor known to be positive) and selected the unclamped step
+/// afterwards: one library division per span on ARMv6-M.
+#[inline(never)]
+fn clamped(start: i64, end: i64, n: i64, lo: i64, hi: i64) -> (i32, i32) {
+    let s = start.clamp(lo, hi);
+    let e = end.clamp(lo, hi);
+    let step = if n > 0 { (e - s) / n } else { 0 };
+    (s as i32, step as i32)
+}
+
+impl Gradient {
+    /// [`Self::span`]'s start and end values outside the narrow case: 64×64
+    /// products, saturated when the plane is not `small`.
+    ///
+    /// Out of line on purpose: inlined, LLVM computed these products on
+    /// every span and selected the narrow result afterwards (if-conversion:
+    /// both arms are free of side effects), which on ARMv6-M cost four
+    /// 64-bit library multiplies per span.
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    fn wide_ends(
+        &self,
+        x: i32,
+        y: i32,
+        len: u32,
+        px: i64,
+        py: i64,
+        step: i64,
+        n: i64,
+    ) -> (i64, i64) {
+        let pixel_range = 1 << 16;
+        if self.small && x.abs() < pixel_range && y.abs() < pixel_range && len < 1 << 16 {
+            // See `small`; n < 2^16 and |step·n| < 2^44.
+            let v = self.base + self.gx * px + self.gy * py;
+            let start = (v + (1 << (EXTRA - 1))) >> EXTRA;
+            (start, start + step * n)
+        } else {
+            let v = self
+                .base
+                .saturating_add(self.gx.saturating_mul(px))
+                .saturating_add(self.gy.saturating_mul(py));
+            let start = v.saturating_add(1 << (EXTRA - 1)) >> EXTRA;
+            (start, start.saturating_add(step.saturating_mul(n)))
+        }
     }
 }
 

@@ -247,6 +247,32 @@ impl<K: StoredDepth> DepthTest for DepthBuffer<'_, K> {
     }
 }
 
+/// The fused per-pixel loop: test `keys` against the depths `z + i·dz`,
+/// and where one passes store it and the pixel `color(i)`.
+///
+/// Out of line on purpose: inlined into the scan converter, which keeps
+/// its edge, plane and clip state live across the span, the loop spilled
+/// its depth, step and color to the stack on ARMv6-M (8 low registers):
+/// 18 instructions per pixel for flat + depth instead of 11.
+#[cfg(feature = "depth")]
+#[inline(never)]
+fn fused_run<K: StoredDepth, C, F: FnMut(u32) -> C>(
+    keys: &mut [K],
+    pixels: &mut [C],
+    mut z: i32,
+    dz: i32,
+    mut color: F,
+) {
+    for ((d, p), i) in keys.iter_mut().zip(pixels).zip(0..) {
+        let key = K::from_z(z);
+        if key < *d {
+            *d = key;
+            *p = color(i);
+        }
+        z = z.wrapping_add(dz);
+    }
+}
+
 #[cfg(feature = "depth")]
 impl<K: StoredDepth> DepthBuffer<'_, K> {
     /// The fused loop of [`DepthTest::test_write`]: one pass over the
@@ -269,15 +295,7 @@ impl<K: StoredDepth> DepthBuffer<'_, K> {
             .and_then(|r| band.buf.get_mut(r))
         {
             // The whole span is inside (the scan converter's case).
-            let mut z = z;
-            for ((d, p), i) in keys.iter_mut().zip(pixels).zip(0..) {
-                let key = K::from_z(z);
-                if key < *d {
-                    *d = key;
-                    *p = color(i);
-                }
-                z = z.wrapping_add(dz);
-            }
+            fused_run(keys, pixels, z, dz, color);
             return;
         }
         let Some((skip, r)) = band.layout.span(y, x, len) else {

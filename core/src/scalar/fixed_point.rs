@@ -170,6 +170,62 @@ impl<Frac: LeEqU32> Fx<Frac> {
     }
 }
 
+/// `round(x·2^frac)` (half away from zero), saturated to `i32`, NaN → 0,
+/// from the bits of `x` in integer arithmetic; `frac ≤ 32`.
+///
+/// `x = ±m·2^(e − 150)` with the 24-bit significand m (the implicit bit
+/// set for normal numbers) and the biased exponent e, so
+/// `x·2^frac = ±m·2^k`, `k = e − 150 + frac`: an integer shift of m
+/// (saturating) for `k ≥ 0`, else `(m + 2^(−k−1)) >> −k` on the magnitude.
+pub(crate) fn f32_to_fixed_bits(x: f32, frac: u32) -> i32 {
+    let bits = x.to_bits();
+    let negative = bits >> 31 != 0;
+    let e = ((bits >> 23) & 0xff) as i32;
+    let frac_bits = bits & 0x7f_ffff;
+    if e == 0xff {
+        return match (frac_bits, negative) {
+            (0, false) => i32::MAX,
+            (0, true) => i32::MIN,
+            _ => 0, // NaN
+        };
+    }
+    let (m, e) = if e == 0 {
+        (frac_bits, 1) // subnormal: no implicit bit, exponent of 2^-126
+    } else {
+        (frac_bits | 0x80_0000, e)
+    };
+    let k = e - 150 + frac as i32;
+    // The magnitude, at most 2^31 (which saturates for a positive value).
+    let mag: u64 = if k >= 0 {
+        if k >= 40 {
+            u64::MAX // m ≥ 1 here unless x = ±0, handled below
+        } else {
+            (m as u64) << k
+        }
+    } else {
+        let s = (-k) as u32;
+        if s > 40 {
+            0 // below 2^-16 · 2^frac… far below one half
+        } else {
+            ((m as u64) + (1 << (s - 1))) >> s
+        }
+    };
+    if m == 0 {
+        return 0;
+    }
+    if negative {
+        if mag >= 1 << 31 {
+            i32::MIN
+        } else {
+            -(mag as i32)
+        }
+    } else if mag > i32::MAX as u64 {
+        i32::MAX
+    } else {
+        mag as i32
+    }
+}
+
 /// The exact product `a·b` as `i64`.
 ///
 /// ARMv6-M (Cortex-M0/M0+, RP2040) has no 32×32→64 multiply, and LLVM
@@ -387,6 +443,14 @@ impl<Frac: LeEqU32 + 'static> Scalar for Fx<Frac> {
         // Round half away from zero without libm: `as` truncates and saturates.
         let r = if v >= 0.0 { v + 0.5 } else { v - 0.5 };
         Self::from_bits(r as i32)
+    }
+    /// The same value as `from_f64(x as f64)` (round half away from zero,
+    /// saturated, NaN → 0), decoded from the bits in integers: a firmware
+    /// on a core without an FPU that converts an `f32` scene description
+    /// links no soft-float code for it (`from_f64` needs 64-bit float
+    /// multiply, add and compares, about 2.5 KB on ARMv6-M).
+    fn from_f32(x: f32) -> Self {
+        Self::from_bits(f32_to_fixed_bits(x, Self::FRAC))
     }
     fn from_i32(x: i32) -> Self {
         Self::sat((x as i64) << Self::FRAC)

@@ -325,3 +325,93 @@ fn split_widening_mul_is_exact() {
         assert_eq!(split_widening_mul(a, b), a as i64 * b as i64, "{a}·{b}");
     }
 }
+
+/// `Fx::from_f32` (integer decoding of the bits) equals
+/// `from_f64(x as f64)` (the float path it replaces on FPU-less cores)
+/// for every fraction width: special values, the rounding and saturation
+/// boundaries, and one f32 bit pattern in every 4099.
+#[test]
+fn from_f32_equals_from_f64_of_the_widened_value() {
+    use super::fixed_point::f32_to_fixed_bits;
+    fn check<F: Scalar>(x: f32) {
+        assert_eq!(
+            F::from_f32(x),
+            F::from_f64(x as f64),
+            "{} from_f32({x:e}) (bits {:#010x})",
+            F::NAME,
+            x.to_bits()
+        );
+    }
+    fn all(x: f32) {
+        check::<super::I16F16>(x);
+        check::<super::I24F8>(x);
+        check::<super::I2F30>(x);
+    }
+    let mut specials = std::vec![
+        0.0f32,
+        -0.0,
+        f32::NAN,
+        -f32::NAN,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        f32::MIN_POSITIVE,
+        -f32::MIN_POSITIVE,
+        f32::from_bits(1),
+        f32::from_bits(0x8000_0001),
+        f32::MAX,
+        f32::MIN,
+    ];
+    // Around every half-integer step and the saturation limits of each
+    // width: the neighbours of ±(j + ½)·2^-frac and ±2^(31 − frac).
+    for frac in [8, 16, 30] {
+        let unit = (2.0f64).powi(-frac);
+        for j in [
+            0.5,
+            1.5,
+            2.5,
+            1000.5,
+            65535.5,
+            2147483647.0,
+            2147483647.5,
+            2147483648.0,
+        ] {
+            for sign in [1.0, -1.0] {
+                let v = (sign * j * unit) as f32;
+                specials.extend([
+                    v,
+                    f32::from_bits(v.to_bits() + 1),
+                    f32::from_bits(v.to_bits().wrapping_sub(1)),
+                ]);
+            }
+        }
+    }
+    for &x in &specials {
+        all(x);
+    }
+    let mut b = 0u32;
+    while let Some(next) = b.checked_add(4099) {
+        all(f32::from_bits(b));
+        b = next;
+    }
+    // The helper saturates and rounds like `as` after adding ½.
+    assert_eq!(f32_to_fixed_bits(0.5 / 65536.0, 16), 1);
+    assert_eq!(f32_to_fixed_bits(-0.5 / 65536.0, 16), -1);
+    assert_eq!(f32_to_fixed_bits(32768.0, 16), i32::MAX);
+    assert_eq!(f32_to_fixed_bits(-32768.0, 16), i32::MIN);
+}
+
+/// Every one of the 2^32 f32 bit patterns, for I16F16 (about a minute in
+/// release): `cargo test --release -p sightline --lib
+/// from_f32_exhaustive -- --ignored`.
+#[test]
+#[ignore = "exhaustive: 2^32 values; run with --ignored in release"]
+fn from_f32_exhaustive() {
+    for b in 0..=u32::MAX {
+        let x = f32::from_bits(b);
+        assert_eq!(
+            super::I16F16::from_f32(x),
+            super::I16F16::from_f64(x as f64),
+            "bits {b:#010x}"
+        );
+    }
+}

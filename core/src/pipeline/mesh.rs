@@ -227,17 +227,28 @@ impl<S: Scalar> Pipeline<S> {
 }
 
 /// Front-facing (negative shoelace area, y down) for any polygon.
-fn shoelace_front<const VARYINGS: usize>(
+///
+/// Exact for any `i32` coordinates without i128 arithmetic: each product
+/// is at most 2^62 in magnitude (exact in i64) and is added to a two-part
+/// accumulator `hi·2^32 + lo` with `lo` kept in `[0, 2^32)`, so nothing
+/// overflows for fewer than 2^29 vertices.
+pub(super) fn shoelace_front<const VARYINGS: usize>(
     screen: &[ScreenVertex<VARYINGS>],
     last: ScreenVertex<VARYINGS>,
 ) -> bool {
-    // i128: coordinates may reach 2^31 (the scan converter rejects beyond
-    // 2^28 later).
-    let mut area2: i128 = 0;
+    let (mut hi, mut lo) = (0i64, 0i64);
+    let mut add = |p: i64| {
+        // |lo + p| < 2^32 + 2^62; hi changes by at most 2^30 + 1 per call.
+        let t = lo + p;
+        hi += t >> 32;
+        lo = t & 0xffff_ffff;
+    };
     let mut prev = last;
     for &v in screen {
-        area2 += prev.x as i128 * v.y as i128 - prev.y as i128 * v.x as i128;
+        add(crate::scalar::widening_mul(prev.x, v.y));
+        add(-crate::scalar::widening_mul(prev.y, v.x));
         prev = v;
     }
-    area2 < 0
+    // The area is hi·2^32 + lo with 0 ≤ lo < 2^32: negative exactly when hi is.
+    hi < 0
 }

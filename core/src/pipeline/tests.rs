@@ -1014,3 +1014,41 @@ fn keep_inside_agrees_with_keep() {
         }
     }
 }
+
+/// The i64 two-part shoelace sign equals the i128 shoelace sign for
+/// polygons with any `i32` coordinates, extremes included.
+#[test]
+fn shoelace_front_matches_i128() {
+    fn oracle(p: &[ScreenVertex<0>]) -> bool {
+        let mut area2: i128 = 0;
+        let mut prev = p[p.len() - 1];
+        for &v in p {
+            area2 += prev.x as i128 * v.y as i128 - prev.y as i128 * v.x as i128;
+            prev = v;
+        }
+        area2 < 0
+    }
+    let mut r = 0x0bad_5eed_u32;
+    let mut next = move || {
+        r ^= r << 13;
+        r ^= r >> 17;
+        r ^= r << 5;
+        r
+    };
+    let extremes = [i32::MIN, i32::MIN + 1, -1, 0, 1, i32::MAX - 1, i32::MAX];
+    for case in 0..50_000 {
+        let n = 3 + (next() % 10) as usize;
+        let poly: Vec<ScreenVertex<0>> = (0..n)
+            .map(|_| {
+                let c = |r: u32| match case % 3 {
+                    0 => extremes[(r % 7) as usize],
+                    1 => r as i32,
+                    _ => (r % 4001) as i32 - 2000,
+                };
+                ScreenVertex::new(c(next()), c(next()), 0, [])
+            })
+            .collect();
+        let last = poly[n - 1];
+        assert_eq!(mesh::shoelace_front(&poly, last), oracle(&poly), "{poly:?}");
+    }
+}

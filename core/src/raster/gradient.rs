@@ -46,12 +46,15 @@ pub(super) struct Basis {
 impl Gradient {
     /// Fits the plane through values `a` at the basis vertices.
     ///
-    /// The numerators `Δa·e << EXTRA` can reach 2^71 (`Δa` < 2^33, an
-    /// edge component < 2^30), so the general path is i128. Polygons of
-    /// viewport size with 16.16 varyings stay far below 2^63, and take an
-    /// i64 path instead: on Cortex-M0 an i128 division is a long library
-    /// call, and this runs per polygon and per quantity. Both paths give
-    /// the same quotient (round to nearest, ties away from zero).
+    /// The numerators `(Δa₁·e₂ − Δa₂·e₁) << EXTRA` can reach 2^70 (`Δa` <
+    /// 2^33, an edge component ≤ 2^29, so the cross product is below 2^62
+    /// and exact in i64, but not once shifted). Polygons of viewport size
+    /// with 16.16 varyings stay far below 2^62 shifted, and take one i64
+    /// division; the rest divides the unshifted cross product and carries
+    /// the remainder through the shift bit by bit ([`div_round_shifted`]),
+    /// in i64 too: no i128 arithmetic is linked (on Cortex-M0 an i128
+    /// division is a kilobyte of library code). Both paths give the same
+    /// quotient (round to nearest, ties away from zero).
     pub(super) fn new(b: &Basis, a: [i64; 3]) -> Self {
         let (x0, y0) = b.p[0];
         let e1 = (b.p[1].0 as i64 - x0 as i64, b.p[1].1 as i64 - y0 as i64);
@@ -59,20 +62,15 @@ impl Gradient {
         let da1 = a[1] - a[0];
         let da2 = a[2] - a[0];
         let area = b.area2;
-        let num_x = cross_shifted(da1, e2.1, da2, e1.1);
-        let num_y = cross_shifted(da2, e1.0, da1, e2.0);
-        let (gx, gy) = match (num_x, num_y) {
-            (Some(nx), Some(ny)) => (div_round(nx, area), div_round(ny, area)),
-            _ => {
-                let wide = |p: i64, q: i64, r: i64, s: i64| {
-                    ((p as i128 * q as i128) - (r as i128 * s as i128)) << EXTRA
-                };
-                (
-                    div_round_wide(wide(da1, e2.1, da2, e1.1), area),
-                    div_round_wide(wide(da2, e1.0, da1, e2.0), area),
-                )
+        let g = |v: i64| {
+            if v.unsigned_abs() < 1 << (62 - EXTRA) {
+                div_round(v << EXTRA, area)
+            } else {
+                div_round_shifted(v, area)
             }
         };
+        let gx = g(cross(da1, e2.1, da2, e1.1));
+        let gy = g(cross(da2, e1.0, da1, e2.0));
         let lim = 1i64 << 32;
         Self {
             base: a[0] << EXTRA,
@@ -186,22 +184,54 @@ impl Gradient {
     }
 }
 
-/// `(p·q − r·s) << EXTRA` if it fits in i64.
+/// `p·q − r·s`: exact for the set-up's inputs (`|p|, |r| < 2^33`,
+/// `|q|, |s| ≤ 2^29`, so each product is below 2^62), saturated beyond.
 #[inline]
-fn cross_shifted(p: i64, q: i64, r: i64, s: i64) -> Option<i64> {
+fn cross(p: i64, q: i64, r: i64, s: i64) -> i64 {
     let small = |v: i64| i32::try_from(v).ok();
-    let v = match (small(p), small(q), small(r), small(s)) {
-        // Each product below 2^62 in magnitude, their difference below
-        // 2^63: exact, and a 32×32→64 multiply (no 64×64 library call on
-        // ARMv6-M). Depth and varying differences and edge vectors always
-        // take this path.
+    match (small(p), small(q), small(r), small(s)) {
+        // Depth and varying differences and edge vectors almost always
+        // take this path: 32×32→64 multiplies (no 64×64 library call on
+        // ARMv6-M), each product below 2^58 with edges ≤ 2^29.
         (Some(p), Some(q), Some(r), Some(s)) => {
-            crate::scalar::widening_mul(p, q) - crate::scalar::widening_mul(r, s)
+            crate::scalar::widening_mul(p, q).saturating_sub(crate::scalar::widening_mul(r, s))
         }
-        _ => p.checked_mul(q)?.checked_sub(r.checked_mul(s)?)?,
+        _ => p.saturating_mul(q).saturating_sub(r.saturating_mul(s)),
+    }
+}
+
+/// `(v·2^EXTRA) / den` rounded to nearest, ties away from zero, saturated
+/// to i64; `den ≠ 0` (a zero `den` gives the saturated value of `v`'s
+/// sign). Exact for every `v` and `den`, in u64: `|v| = q₀·|den| + r₀`,
+/// then each of the `EXTRA` shifted-in bits doubles the remainder (below
+/// 2^64 as `r < |den| ≤ 2^63`) and takes one more quotient bit.
+#[inline(never)]
+pub(super) fn div_round_shifted(v: i64, den: i64) -> i64 {
+    let (u, d) = (v.unsigned_abs(), den.unsigned_abs());
+    let negative = (v < 0) != (den < 0);
+    let q = match u.checked_div(d).zip(u.checked_rem(d)) {
+        None => u64::MAX, // den = 0
+        Some((mut q, mut r)) => {
+            for _ in 0..EXTRA {
+                // r < d: 2r < 2^64, and 2r − d < d.
+                let r2 = r << 1;
+                q = q.saturating_mul(2);
+                if r2 >= d {
+                    r = r2 - d;
+                    q = q.saturating_add(1);
+                } else {
+                    r = r2;
+                }
+            }
+            // Ties away from zero: round up when 2r ≥ d (r < d ≤ 2^63).
+            if r >= d - r { q.saturating_add(1) } else { q }
+        }
     };
-    // Keep one bit of headroom for the rounding offset in `div_round`.
-    (v.unsigned_abs() < 1 << (62 - EXTRA)).then_some(v << EXTRA)
+    if negative {
+        if q >= 1 << 63 { i64::MIN } else { -(q as i64) }
+    } else {
+        i64::try_from(q).unwrap_or(i64::MAX)
+    }
 }
 
 /// `num / den` rounded to nearest, ties away from zero; `den ≠ 0`.
@@ -212,12 +242,4 @@ pub(super) fn div_round(num: i64, den: i64) -> i64 {
     // truncating division keeps the sign. |num| < 2^62 and
     // |half| < 2^62, so the sum does not overflow.
     (num + num.signum() * half) / den
-}
-
-/// As [`div_round`] in i128, saturated to i64.
-pub(super) fn div_round_wide(num: i128, den: i64) -> i64 {
-    let den = den as i128;
-    let half = (den / 2).abs();
-    let q = (num + num.signum() * half) / den;
-    q.clamp(i64::MIN as i128, i64::MAX as i128) as i64
 }

@@ -595,17 +595,78 @@ fn rounded_division_ties_away_from_zero() {
     assert_eq!(div_round(0, -3), 0);
 }
 
+/// The exact reference: `round(num / den)`, ties away from zero,
+/// saturated to i64, in i128 (the oracle only; the crate links no i128).
+fn div_round_i128(num: i128, den: i128) -> i64 {
+    let half = (den / 2).abs();
+    let q = (num + num.signum() * half) / den;
+    q.clamp(i64::MIN as i128, i64::MAX as i128) as i64
+}
+
 proptest! {
     #[test]
-    fn narrow_and_wide_division_agree(num in -(1i64 << 61)..(1i64 << 61), den in any::<i64>()) {
-        use super::gradient::{div_round, div_round_wide};
+    fn rounded_division_matches_i128(num in -(1i64 << 61)..(1i64 << 61), den in any::<i64>()) {
+        use super::gradient::div_round;
         let den = if den == 0 { 1 } else { den >> 3 | 1 };
-        prop_assert_eq!(div_round(num, den), div_round_wide(num as i128, den));
+        prop_assert_eq!(div_round(num, den), div_round_i128(num as i128, den as i128));
         // Against exact rational rounding.
         let q = div_round(num, den) as i128;
         let (n, d) = (num as i128, den as i128);
         // |n/d − q| ≤ ½  ⇔  |n − q·d| ≤ |d|/2
         prop_assert!(2 * (n - q * d).abs() <= d.abs());
+    }
+
+    /// `div_round_shifted` (the set-up's i64-only path for numerators
+    /// that overflow once shifted) equals the i128 quotient of `v·2^8`
+    /// for every `v` and non-zero `den`, saturated included.
+    #[test]
+    fn shifted_division_matches_i128(v in any::<i64>(), den in any::<i64>(), shift in 0u32..64) {
+        use super::gradient::div_round_shifted;
+        // Denominators of every magnitude, small ones included.
+        let den = den >> shift;
+        let den = if den == 0 { 1 } else { den };
+        prop_assert_eq!(div_round_shifted(v, den), div_round_i128((v as i128) << 8, den as i128));
+    }
+}
+
+#[test]
+fn shifted_division_edges() {
+    use super::gradient::div_round_shifted;
+    for v in [
+        0,
+        1,
+        -1,
+        127,
+        128,
+        -128,
+        i64::MAX,
+        i64::MIN,
+        i64::MIN + 1,
+        1 << 54,
+        -(1 << 54),
+    ] {
+        for den in [
+            1,
+            -1,
+            2,
+            -2,
+            3,
+            255,
+            256,
+            257,
+            511,
+            512,
+            i64::MAX,
+            i64::MIN,
+            1 << 59,
+            -(1 << 59) + 1,
+        ] {
+            assert_eq!(
+                div_round_shifted(v, den),
+                div_round_i128((v as i128) << 8, den as i128),
+                "v = {v}, den = {den}"
+            );
+        }
     }
 }
 

@@ -60,7 +60,8 @@ pub struct RasterStats {
     /// Triangles that went through the clipper.
     pub clipped: u32,
     /// Triangles the pipeline could not draw (clip or projection
-    /// overflow, e.g. saturated fixed point); the rest is still drawn.
+    /// overflow, e.g. saturated fixed point, or a vertex index beyond the
+    /// mesh); the rest is still drawn.
     pub errors: u32,
 }
 
@@ -364,8 +365,16 @@ impl<S: Scalar> Tri<'_, '_, S> {
         Sh: SpanShader<VARYINGS, Color = T::Color>,
     {
         stats.triangles += 1;
-        let get = |k: u16| self.verts.get(k as usize).copied().unwrap_or_default();
-        let (a, b, c) = (get(tri[0]), get(tri[1]), get(tri[2]));
+        // By reference: the cull test reads only x, y and the outcode
+        // (copying three vertices cost about 50 instructions per triangle
+        // on ARMv6-M). A prepared mesh's indices are checked when it is
+        // prepared; one out of range here (a mesh edited since) is an
+        // error, not a draw.
+        let get = |k: u16| self.verts.get(k as usize);
+        let (Some(a), Some(b), Some(c)) = (get(tri[0]), get(tri[1]), get(tri[2])) else {
+            stats.errors += 1;
+            return;
+        };
         let outcome = if a.outcode | b.outcode | c.outcode == 0 {
             let (ya, yb, yc) = (a.screen.y, b.screen.y, c.screen.y);
             // Rows with centers in [y_min, y_max): see raster's fill rule.
@@ -378,14 +387,14 @@ impl<S: Scalar> Tri<'_, '_, S> {
             // built in place (an array `map` here compiled to two memcpy
             // calls per triangle on ARMv6-M).
             let xy = |v: &MeshVertex<1>| (v.screen.x, v.screen.y);
-            if !self.pipe.keep_inside(xy(&a), xy(&b), xy(&c)) {
+            if !self.pipe.keep_inside(xy(a), xy(b), xy(c)) {
                 stats.culled += 1;
                 return;
             }
             let sv = |k: u16, v: &MeshVertex<1>| {
                 ScreenVertex::new(v.screen.x, v.screen.y, v.screen.z, inside(k, v))
             };
-            let s = [sv(tri[0], &a), sv(tri[1], &b), sv(tri[2], &c)];
+            let s = [sv(tri[0], a), sv(tri[1], b), sv(tri[2], c)];
             fill_polygon(target, depth, &shader(&s), &s)
         } else if a.outcode & b.outcode & c.outcode & !OUTCODE_UNUSABLE != 0 {
             return;

@@ -102,6 +102,28 @@ pub fn render_scene<S: Scalar>(
     depth: &mut [u16],
     mut row: impl FnMut(u16, &[Color]),
 ) -> Result<u64, SceneError> {
+    let mut h = Fnv::new();
+    scene_frames::<S>(name, 1, vec3s, scratch, color, depth, |y, px| {
+        h.pixels(px);
+        row(y, px);
+    })?;
+    Ok(h.0)
+}
+
+/// Renders built-in scene `name` `frames` times through the public scene
+/// API, as [`render_scene`] does once: prepared and set up once, then per
+/// frame projected once and drawn band by band, `row(y, pixels)` called
+/// for every finished row. The `sf` command measures instructions per
+/// frame with it (N frames minus 0 frames).
+pub fn scene_frames<S: Scalar>(
+    name: &str,
+    frames: u32,
+    vec3s: &mut [Vec3<S>],
+    scratch: &mut [MeshVertex<1>],
+    color: &mut [Color],
+    depth: &mut [u16],
+    mut row: impl FnMut(u16, &[Color]),
+) -> Result<(), SceneError> {
     let scene: &Scene<'_> = builtin::by_name(name).ok_or(SceneError::BadProjection)?;
     let ray = if name == "spheres" {
         let view = scene.view::<S>(WIDTH, HEIGHT)?;
@@ -112,31 +134,30 @@ pub fn render_scene<S: Scalar>(
     let mut objects = [PreparedObject::EMPTY; STORAGE.objects];
     let objects = scene.prepare(vec3s, &mut objects)?;
     let renderer = Renderer::<S>::new(scene, WIDTH, HEIGHT)?;
-    let frame = renderer.project(objects, scratch)?;
     let (color, depth) = (&mut color[..BAND_PIXELS], &mut depth[..BAND_PIXELS]);
-    let mut h = Fnv::new();
     let w = WIDTH as usize;
-    for y0 in (0..HEIGHT).step_by(BAND_ROWS as usize) {
-        let rows = BAND_ROWS.min(HEIGHT - y0);
-        let n = w * rows as usize;
-        let bad = |_| SceneError::BadProjection;
-        let mut band = Band::new(&mut color[..n], WIDTH, rows, w, y0 as i32).map_err(bad)?;
-        match &ray {
-            Some(r) => r.render(&mut band),
-            None => {
-                let mut z =
-                    DepthBuffer::new(&mut depth[..n], WIDTH, rows, w, y0 as i32).map_err(bad)?;
-                z.clear();
-                frame.draw(&mut band, &mut z);
+    for _ in 0..frames {
+        let frame = renderer.project(&mut *objects, &mut *scratch)?;
+        for y0 in (0..HEIGHT).step_by(BAND_ROWS as usize) {
+            let rows = BAND_ROWS.min(HEIGHT - y0);
+            let n = w * rows as usize;
+            let bad = |_| SceneError::BadProjection;
+            let mut band = Band::new(&mut color[..n], WIDTH, rows, w, y0 as i32).map_err(bad)?;
+            match &ray {
+                Some(r) => r.render(&mut band),
+                None => {
+                    let mut z = DepthBuffer::new(&mut depth[..n], WIDTH, rows, w, y0 as i32)
+                        .map_err(bad)?;
+                    z.clear();
+                    frame.draw(&mut band, &mut z);
+                }
+            }
+            for r in 0..rows as usize {
+                row(y0 + r as u16, &color[r * w..(r + 1) * w]);
             }
         }
-        for r in 0..rows as usize {
-            let px = &color[r * w..(r + 1) * w];
-            h.pixels(px);
-            row(y0 + r as u16, px);
-        }
     }
-    Ok(h.0)
+    Ok(())
 }
 
 // ---------------------------------------------------------------- fill rate

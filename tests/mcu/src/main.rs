@@ -84,7 +84,7 @@ fn exit(ok: bool) -> ! {
 
 fn usage(cmd: &str) -> ! {
     hprintln!(
-        "bad command line {:?}; expected `run KERNEL SCALAR N`, `hash`, `frames`, `fill MODE full|half` or `wl w1|w2 SCALAR NN`",
+        "bad command line {:?}; expected `run KERNEL SCALAR N`, `hash`, `frames`, `fill MODE full|half`, `wl w1|w2 SCALAR NN` or `sf SCENE SCALAR N`",
         cmd
     );
     hprintln!("kernels: {:?}; scalars: I16F16, f32", kernels::KERNELS);
@@ -163,6 +163,38 @@ fn main() -> ! {
                     exit(true)
                 }
                 None => usage(cmd),
+            }
+        }
+        Some("sf") => {
+            // sf SCENE SCALAR N: N frames of a built-in scene through the
+            // scene API (prepared once); N is written with a fixed number
+            // of digits by tests/mcu/run so both runs parse alike.
+            let (Some(name), Some(scalar), Some(n), None) = (
+                args.next(),
+                args.next(),
+                args.next().and_then(parse_u32),
+                args.next(),
+            ) else {
+                usage(cmd)
+            };
+            let (color, depth) = frame_buffers();
+            let (fx3, f3, scratch) = scene_buffers();
+            let r = match scalar {
+                "I16F16" => {
+                    frames::scene_frames::<I16F16>(name, n, fx3, scratch, color, depth, |_, _| {})
+                }
+                "f32" => frames::scene_frames::<f32>(name, n, f3, scratch, color, depth, |_, _| {}),
+                _ => usage(cmd),
+            };
+            match r {
+                Ok(()) => {
+                    hprintln!("sf {} {} frames {}", name, scalar, n);
+                    exit(true)
+                }
+                Err(e) => {
+                    hprintln!("sf {} {} error {:?}", name, scalar, e);
+                    exit(false)
+                }
             }
         }
         Some("wl") => {

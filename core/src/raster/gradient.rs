@@ -240,6 +240,8 @@ pub(super) fn div_round(num: i64, den: i64) -> i64 {
     let half = (den / 2).abs();
     // Ties away from zero: sign(num/den)·(|num| + |den|/2) / |den|, and
     // truncating division keeps the sign. |num| < 2^62 and
-    // |half| < 2^62, so the sum does not overflow.
-    (num + num.signum() * half) / den
+    // |half| < 2^62, so the sum does not overflow. (A branch, not
+    // `signum() * half`: that is a 64-bit library multiply on ARMv6-M.)
+    let biased = if num < 0 { num - half } else { num + half };
+    biased / den
 }

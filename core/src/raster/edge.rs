@@ -126,7 +126,7 @@ pub const SMALL_COORD_LIMIT: i32 = 1 << 14;
 /// steps as the quotient has bits.
 ///
 /// ARMv6-M has no divide instruction. The library's 32-bit division
-/// normalises both operands first and cost about 210 instructions per
+/// normalizes both operands first and cost about 210 instructions per
 /// call in the W1 frame; the edge set-up's quotients are small (a slope,
 /// and a column offset of about one slope, see [`EdgeStepper32::new`]),
 /// so this loop usually ends after a few steps. (A fixed 16-step loop was

@@ -46,8 +46,9 @@ pub(super) struct Basis {
 impl Gradient {
     /// Fits the plane through values `a` at the basis vertices.
     ///
-    /// The numerators `(Δa₁·e₂ − Δa₂·e₁) << EXTRA` can reach 2^70 (`Δa` <
-    /// 2^33, an edge component ≤ 2^29, so the cross product is below 2^62
+    /// The numerators `(Δa₁·e₂ − Δa₂·e₁) << EXTRA` can reach 2^70 (`|Δa|` ≤
+    /// 2^32 for i32 varyings, below 2^24 for depths; an edge component ≤
+    /// 2^29; so each product is at most 2^61, the cross product below 2^62
     /// and exact in i64, but not once shifted). Polygons of viewport size
     /// with 16.16 varyings stay far below 2^62 shifted, and take one i64
     /// division; the rest divides the unshifted cross product and carries
@@ -184,8 +185,8 @@ impl Gradient {
     }
 }
 
-/// `p·q − r·s`: exact for the set-up's inputs (`|p|, |r| < 2^33`,
-/// `|q|, |s| ≤ 2^29`, so each product is below 2^62), saturated beyond.
+/// `p·q − r·s`: exact for the set-up's inputs (`|p|, |r| ≤ 2^32`,
+/// `|q|, |s| ≤ 2^29`, so each product is at most 2^61), saturated beyond.
 #[inline]
 fn cross(p: i64, q: i64, r: i64, s: i64) -> i64 {
     let small = |v: i64| i32::try_from(v).ok();

@@ -92,6 +92,23 @@ fn usage(cmd: &str) -> ! {
     exit(false)
 }
 
+/// The three arguments `WORD SCALAR N` of the `run`, `sf` and `wl`
+/// commands (N decimal), or the usage message.
+fn word_scalar_count<'a>(
+    args: &mut impl Iterator<Item = &'a str>,
+    cmd: &str,
+) -> (&'a str, &'a str, u32) {
+    match (
+        args.next(),
+        args.next(),
+        args.next().and_then(parse_u32),
+        args.next(),
+    ) {
+        (Some(word), Some(scalar), Some(n), None) => (word, scalar, n),
+        _ => usage(cmd),
+    }
+}
+
 #[entry]
 fn main() -> ! {
     let mut buf = [0u8; 128];
@@ -99,14 +116,7 @@ fn main() -> ! {
     let mut args = cmd.split_ascii_whitespace();
     match args.next() {
         Some("run") => {
-            let (Some(kernel), Some(scalar), Some(n), None) = (
-                args.next(),
-                args.next(),
-                args.next().and_then(parse_u32),
-                args.next(),
-            ) else {
-                usage(cmd)
-            };
+            let (kernel, scalar, n) = word_scalar_count(&mut args, cmd);
             let ok = match scalar {
                 "I16F16" => kernels::run::<I16F16>(kernel, n),
                 "f32" => kernels::run::<f32>(kernel, n),
@@ -169,14 +179,7 @@ fn main() -> ! {
             // sf SCENE SCALAR N: N frames of a built-in scene through the
             // scene API (prepared once); N is written with a fixed number
             // of digits by tests/mcu/run so both runs parse alike.
-            let (Some(name), Some(scalar), Some(n), None) = (
-                args.next(),
-                args.next(),
-                args.next().and_then(parse_u32),
-                args.next(),
-            ) else {
-                usage(cmd)
-            };
+            let (name, scalar, n) = word_scalar_count(&mut args, cmd);
             let (color, depth) = frame_buffers();
             let (fx3, f3, scratch) = scene_buffers();
             let r = match scalar {
@@ -198,14 +201,7 @@ fn main() -> ! {
             }
         }
         Some("wl") => {
-            let (Some(which), Some(scalar), Some(n), None) = (
-                args.next(),
-                args.next(),
-                args.next().and_then(parse_u32),
-                args.next(),
-            ) else {
-                usage(cmd)
-            };
+            let (which, scalar, n) = word_scalar_count(&mut args, cmd);
             let gouraud = match which {
                 "w1" => false,
                 "w2" => true,

@@ -13,7 +13,9 @@
 //!   vertices;
 //! - every output vertex is inside every plane within
 //!   `tol_i = 16·(ε + f)·(Σ_k |n_ik|·(2M + 1) + |d_i| + 1)` (M the largest
-//!   input coordinate, ε = `T::EPSILON`, f the fixed-point step or 0);
+//!   input coordinate, ε = `T::EPSILON`, f the fixed-point step or 0),
+//!   and one that is not an input vertex lies on some plane within the
+//!   same `tol_i` (it is an intersection point);
 //! - every output vertex lies inside the bounding box of the input
 //!   vertices, and its attribute within the range of the input attributes,
 //!   both within `16(ε + f)·(M + 1)`; for affine attributes
@@ -226,6 +228,7 @@ fn run<T: Scalar>(input: &Input) {
             "{}: non-finite output {v:?}",
             T::NAME
         );
+        let mut on_a_plane = false;
         for pl in frustum.planes() {
             let n = common::f3(pl.n);
             let d = pl.d.to_f64();
@@ -239,7 +242,14 @@ fn run<T: Scalar>(input: &Input) {
                 T::NAME,
                 -dist
             );
+            on_a_plane |= dist <= tol || !tol.is_finite();
         }
+        // A vertex the clipper made is an intersection with some plane.
+        assert!(
+            on_a_plane || verts.iter().any(|w| w.pos == v.pos),
+            "{}: new output vertex {p:?} lies on no plane",
+            T::NAME
+        );
         for k in 0..3 {
             let lo = pos.iter().fold(f64::INFINITY, |a, q| a.min(q[k]));
             let hi = pos.iter().fold(f64::NEG_INFINITY, |a, q| a.max(q[k]));

@@ -964,6 +964,132 @@ fn huge_coordinates_clip_inside_f64() {
     huge_coordinates_clip_inside::<f64>();
 }
 
+#[test]
+fn huge_coordinates_clip_inside_i16f16() {
+    huge_coordinates_clip_inside::<I16F16>();
+}
+
+/// Fuzz regression (`clip`, I16F16): plane distances of ±42 000 and their
+/// difference of 80 000 saturated at ±32 768 in fixed point, so the
+/// intersection parameter came out wrong and a clipped vertex landed
+/// 60 units outside a side plane `x ≤ 168.5 z`. The clipper now halves
+/// such a plane (a power of two: same sign everywhere) until no distance
+/// or difference can saturate for the polygon at hand. Every output
+/// vertex, evaluated in f64 on its stored coordinates, must be inside.
+#[test]
+fn saturating_distances_clip_inside_i16f16() {
+    type S = I16F16;
+    let s = S::from_f64;
+    let v = |x: f64, y: f64, z: f64, i: f64| Vertex::new(v3::<S>(x, y, z), Intensity(s(i)));
+    let cases: [(Plane<S>, [VertexXyzI<S>; 3]); 4] = [
+        // Distances ±20 220: their difference saturates.
+        (
+            Plane::new(v3(-1.0, 0.0, 168.5), S::ZERO),
+            [
+                v(0.0, 0.0, 120.0, 0.0),
+                v(0.0, 0.0, -120.0, 1.0),
+                v(0.0, 10.0, 0.0, 0.5),
+            ],
+        ),
+        // The outside distance −42 125 saturates itself.
+        (
+            Plane::new(v3(-1.0, 0.0, 168.5), S::ZERO),
+            [
+                v(-10.0, 0.0, 0.0, 0.0),
+                v(0.0, 0.0, -250.0, 1.0),
+                v(-10.0, 5.0, 0.0, 0.5),
+            ],
+        ),
+        // Unit normal, coordinates near the ends of the range.
+        (
+            Plane::new(v3(1.0, 0.0, 1.0), S::ZERO),
+            [
+                v(30000.0, 0.0, 0.0, 0.0),
+                v(-30000.0, 0.0, -1000.0, 1.0),
+                v(0.0, 20000.0, 5.0, 0.5),
+            ],
+        ),
+        // b − a = 60 000 saturates in the interpolation as well.
+        (
+            Plane::new(v3(1.0, 0.0, 0.0), s(-1.0)),
+            [
+                v(-30000.0, 30000.0, -30000.0, 0.0),
+                v(30000.0, -30000.0, 30000.0, 1.0),
+                v(30000.0, 30000.0, 0.0, 0.5),
+            ],
+        ),
+    ];
+    for (plane, poly) in &cases {
+        let out = Frustum::from_planes(&[*plane]).clip(poly).unwrap();
+        assert!(out.len() >= 3, "{out:?}");
+        let n = [plane.n.x, plane.n.y, plane.n.z].map(S::to_f64);
+        let m = poly.iter().fold(0.0f64, |m, q| {
+            m.max(q.pos.x.to_f64().abs())
+                .max(q.pos.y.to_f64().abs())
+                .max(q.pos.z.to_f64().abs())
+        });
+        for o in &out {
+            let p = [o.pos.x, o.pos.y, o.pos.z].map(S::to_f64);
+            let dist = n[0] * p[0] + n[1] * p[1] + n[2] * p[2] + plane.d.to_f64();
+            // A few fixed-point steps of the largest term.
+            let tol =
+                8.0 * S::EPSILON.to_f64() * (n.iter().map(|c| c.abs()).sum::<f64>() * m + 1.0);
+            assert!(
+                dist >= -tol,
+                "{p:?} outside {plane:?} by {} (tol {tol})",
+                -dist
+            );
+            for k in 0..3 {
+                let lo = poly
+                    .iter()
+                    .map(|q| [q.pos.x, q.pos.y, q.pos.z][k].to_f64())
+                    .fold(f64::MAX, f64::min);
+                let hi = poly
+                    .iter()
+                    .map(|q| [q.pos.x, q.pos.y, q.pos.z][k].to_f64())
+                    .fold(f64::MIN, f64::max);
+                assert!(
+                    p[k] >= lo - tol && p[k] <= hi + tol,
+                    "{p:?} outside the input box"
+                );
+            }
+            let i = o.attr.0.to_f64();
+            assert!((0.0..=1.0).contains(&i), "{o:?}");
+            if poly.iter().any(|q| q.pos == o.pos) {
+                continue;
+            }
+            // A new vertex lies on the plane and on an input edge.
+            assert!(dist <= tol, "{p:?} off {plane:?} by {dist} (tol {tol})");
+            let off_edge = (0..3)
+                .map(|k| {
+                    let a = [poly[k].pos.x, poly[k].pos.y, poly[k].pos.z].map(S::to_f64);
+                    let b = [0, 1, 2].map(|c| {
+                        [
+                            poly[(k + 1) % 3].pos.x,
+                            poly[(k + 1) % 3].pos.y,
+                            poly[(k + 1) % 3].pos.z,
+                        ][c]
+                            .to_f64()
+                    });
+                    let ab = [0, 1, 2].map(|c| b[c] - a[c]);
+                    let ap = [0, 1, 2].map(|c| p[c] - a[c]);
+                    let t = (ab.iter().zip(&ap).map(|(x, y)| x * y).sum::<f64>()
+                        / ab.iter().map(|x| x * x).sum::<f64>())
+                    .clamp(0.0, 1.0);
+                    (0..3)
+                        .map(|c| (ap[c] - t * ab[c]).powi(2))
+                        .sum::<f64>()
+                        .sqrt()
+                })
+                .fold(f64::MAX, f64::min);
+            assert!(
+                off_edge <= tol,
+                "{p:?} is {off_edge} off every input edge (tol {tol})"
+            );
+        }
+    }
+}
+
 /// The in-volume cull test (`keep_inside`: i32 cross product on small
 /// viewports) decides as the general one (`keep`) for every triangle in
 /// the guard-band rectangle, for both cull modes, on a viewport that takes

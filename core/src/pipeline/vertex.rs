@@ -98,16 +98,18 @@ pub struct IntensityUv<S> {
 
 #[inline]
 fn lerp<S: Scalar>(a: S, b: S, t: S) -> S {
-    let r = a + (b - a) * t;
-    if r.is_finite() {
-        r
-    } else {
-        // Floats at the ends of the range: b − a, or its rounding in
-        // a + (b − a)·t, overflows to ±∞ (and ∞·0 is NaN) although the
-        // exact value lies between a and b (found by the `clip` fuzz
-        // target). Fixed point never gets here.
-        a * (S::ONE - t) + b * t
+    if let Some(d) = b.checked_sub(a) {
+        let r = a + d * t;
+        if r.is_finite() {
+            return r;
+        }
     }
+    // At the ends of the range b − a overflows: to ±∞ in floats (and
+    // ∞·0 is NaN), or it saturates in fixed point, although the exact
+    // value lies between a and b (found by the `clip` fuzz target; for
+    // floats the rounding of a + (b − a)·t can overflow too). Each
+    // product here is at most |a| or |b|, and their sum lies between.
+    a * (S::ONE - t) + b * t
 }
 
 /// Intensity `[0, 1]` → 0..=255 in 16.16.

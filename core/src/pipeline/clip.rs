@@ -139,13 +139,22 @@ impl<S: Scalar> Frustum<S> {
         for v in poly {
             cur.push(*v).map_err(|_| ClipError::TooManyVertices)?;
         }
+        // Fixed point: a bound on every coordinate of every polygon below.
+        // Intersection points lie between their edge's endpoints (the
+        // fallback in `lerp` within a step of them), so the input's
+        // largest magnitude plus one bounds them all.
+        let m = if S::IS_FLOAT {
+            S::ZERO
+        } else {
+            max_magnitude(poly) + S::ONE
+        };
         let mut next = ClippedPolygon::new();
         for plane in self.planes() {
             if cur.len() < 3 {
                 cur.clear();
                 break;
             }
-            clip_one(plane, &cur, &mut next)?;
+            clip_one(plane, m, &cur, &mut next)?;
             core::mem::swap(&mut cur, &mut next);
         }
         if cur.len() < 3 {
@@ -153,6 +162,15 @@ impl<S: Scalar> Frustum<S> {
         }
         Ok(cur)
     }
+}
+
+/// The largest |coordinate| of the polygon's vertices (0 if empty).
+fn max_magnitude<S: Scalar, A: Attributes<S>>(poly: &[Vertex<S, A>]) -> S {
+    poly.iter().fold(S::ZERO, |m, v| {
+        m.max_of(v.pos.x.abs())
+            .max_of(v.pos.y.abs())
+            .max_of(v.pos.z.abs())
+    })
 }
 
 /// Lexicographic order on positions; only used on finite values.
@@ -249,26 +267,22 @@ fn scaled<S: Scalar>(plane: &Plane<S>) -> Plane<S> {
 }
 
 /// Fixed point: the plane halved (a power of two, exact up to the last
-/// bit of each coefficient, so the kept side is the same) until every
-/// distance `n·p + d` over `poly` is computed without saturating and lies
-/// within `±MAX/2`, so that the difference of two distances cannot
-/// saturate either. Saturated distances moved intersection points off the
-/// plane, up to 60 units outside a side plane `x ≤ 168.5 z` (found by the
-/// `clip` fuzz target). A plane that already fits, which is every plane of
-/// a scene within `±MAX/(2·Σ|n|)`, is returned unchanged.
-fn fitted<S: Scalar, A: Attributes<S>>(plane: &Plane<S>, poly: &ClippedPolygon<S, A>) -> Plane<S> {
+/// bit of each coefficient, so the kept side is the same) until
+/// `Σ|n_k|·m + |d| ≤ MAX/2`, where `m` bounds every coordinate of the
+/// polygon: then no distance `n·p + d` saturates, nor the difference of
+/// two. Saturated distances moved intersection points off the plane, up
+/// to 146 units outside a side plane `x ≤ 282.5 z` (found by the `clip`
+/// fuzz target). The bound is taken with the saturating operators (all
+/// terms are ≥ 0, so saturation only overestimates it). A plane that
+/// already fits, which is every plane of a scene within
+/// `±MAX/(2·Σ|n|)`, is returned unchanged.
+fn fitted<S: Scalar>(plane: &Plane<S>, m: S) -> Plane<S> {
     let half_max = S::MAX * S::HALF;
-    let fits = |pl: &Plane<S>, p: Vec3<S>| {
-        (pl.n.x.checked_mul(p.x))
-            .and_then(|a| pl.n.y.checked_mul(p.y).and_then(|b| a.checked_add(b)))
-            .and_then(|a| pl.n.z.checked_mul(p.z).and_then(|b| a.checked_add(b)))
-            .and_then(|a| a.checked_add(pl.d))
-            .is_some_and(|d| d.abs() <= half_max)
-    };
+    let bound = |pl: &Plane<S>| (pl.n.x.abs() + pl.n.y.abs() + pl.n.z.abs()) * m + pl.d.abs();
     let mut pl = *plane;
     // 32 halvings take any I16F16 coefficient to zero.
     for _ in 0..32 {
-        if poly.iter().all(|v| fits(&pl, v.pos)) {
+        if bound(&pl) <= half_max {
             break;
         }
         pl = Plane::new(pl.n * S::HALF, pl.d * S::HALF);
@@ -278,13 +292,14 @@ fn fitted<S: Scalar, A: Attributes<S>>(plane: &Plane<S>, poly: &ClippedPolygon<S
 
 fn clip_one<S: Scalar, A: Attributes<S>>(
     plane: &Plane<S>,
+    m: S,
     input: &ClippedPolygon<S, A>,
     out: &mut ClippedPolygon<S, A>,
 ) -> Result<(), ClipError> {
     let plane = &if S::IS_FLOAT {
         scaled(plane)
     } else {
-        fitted(plane, input)
+        fitted(plane, m)
     };
     out.clear();
     let Some(last) = input.last() else {

@@ -96,7 +96,7 @@ pub struct IntensityUv<S> {
     pub v: S,
 }
 
-#[inline]
+#[inline(never)]
 fn lerp<S: Scalar>(a: S, b: S, t: S) -> S {
     if let Some(d) = b.checked_sub(a) {
         let r = a + d * t;
@@ -104,11 +104,18 @@ fn lerp<S: Scalar>(a: S, b: S, t: S) -> S {
             return r;
         }
     }
-    // At the ends of the range b − a overflows: to ±∞ in floats (and
-    // ∞·0 is NaN), or it saturates in fixed point, although the exact
-    // value lies between a and b (found by the `clip` fuzz target; for
-    // floats the rounding of a + (b − a)·t can overflow too). Each
-    // product here is at most |a| or |b|, and their sum lies between.
+    lerp_far_apart(a, b, t)
+}
+
+/// At the ends of the range b − a overflows: to ±∞ in floats (and ∞·0 is
+/// NaN), or it saturates in fixed point, although the exact value lies
+/// between a and b (found by the `clip` fuzz target; for floats the
+/// rounding of a + (b − a)·t can overflow too). Each product here is at
+/// most |a| or |b|, and their sum lies between. Out of line: it is cold,
+/// and `lerp` is inlined for every attribute.
+#[cold]
+#[inline(never)]
+fn lerp_far_apart<S: Scalar>(a: S, b: S, t: S) -> S {
     a * (S::ONE - t) + b * t
 }
 

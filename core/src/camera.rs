@@ -385,19 +385,29 @@ impl<S: Scalar> Projection<S> {
                 if p.z <= S::ZERO || !p.z.is_finite() {
                     return None;
                 }
-                let inv_z = S::ONE.div_noting_overflow(p.z, &mut overflow);
                 // One division for both coordinates: r = f/z, then x·r and
                 // y·r (a division costs ~300 instructions on ARMv6-M in
                 // fixed point, a multiply ~30). In I16F16 r is within 2⁻¹⁷
                 // of f/z, so x·r is within (|x| + 1)·2⁻¹⁷ px of x·f/z:
                 // below 10⁻³ px while |x|, |y| ≤ 128 view units. Beyond
                 // that, or where r or a product overflows, `focus_ratio`
-                // divides each coordinate (within 2⁻¹⁶ px).
+                // divides each coordinate (within 2⁻¹⁶ px). 1/z and f/z
+                // share one reciprocal of z in fixed point (the same
+                // values as two divisions).
                 let near_axis = |v: S| v.abs() <= S::from_i32(128);
-                let ratio = if near_axis(p.x) && near_axis(p.y) {
-                    focus.checked_div(p.z)
+                let (inv_z, ratio) = if !(near_axis(p.x) && near_axis(p.y)) {
+                    (S::ONE.div_noting_overflow(p.z, &mut overflow), None)
+                } else if S::IS_FLOAT {
+                    // Two divisions: the shared form measured 1.5 % more
+                    // instructions per W1 frame on a Cortex-M4F (this
+                    // function: 160 K -> 232 K, qemu-prof).
+                    (
+                        S::ONE.div_noting_overflow(p.z, &mut overflow),
+                        focus.checked_div(p.z),
+                    )
                 } else {
-                    None
+                    let [inv_z, ratio] = S::checked_quotients([S::ONE, focus], p.z);
+                    (inv_z?, ratio)
                 };
                 let pair = ratio.and_then(|r| Some((p.x.checked_mul(r)?, p.y.checked_mul(r)?)));
                 let (sx, sy) = match pair {

@@ -1,10 +1,10 @@
 //! The perspective divide of the texture shaders, `u = (u·q) / q` with
 //! q = near/z, without a division instruction: ARMv6-M (Cortex-M0) has
 //! none, and a 64-bit division in compiler-builtins costs hundreds of
-//! instructions. Shared by [`PerspectiveTexture`](super::PerspectiveTexture)
-//! and the ray caster's scene path, which mirrors it texel for texel.
+//! instructions. Used by [`PerspectiveTexture`](super::PerspectiveTexture).
 
 use super::PERSPECTIVE_Q_BITS;
+use crate::scalar::recip62;
 
 /// (u, v) in 16.16 from (u·q, v·q) in 16.16 and q = near/z in 8.24, with
 /// one reciprocal instead of two divisions: `r = ⌈2^62 / q'⌉` for
@@ -19,8 +19,7 @@ use super::PERSPECTIVE_Q_BITS;
 /// is taken as 1. On ARMv6-M, which has no divide instruction, this is a
 /// table load, three 32-bit and five 64-bit multiplies (library calls
 /// there), where exact division is two 64-bit divisions (each some
-/// hundreds of instructions in compiler-builtins). The ray caster's scene
-/// path calls it too, so both paths read the same texel.
+/// hundreds of instructions in compiler-builtins).
 #[inline]
 pub(crate) fn divide(v: &[i32; 3]) -> (i64, i64) {
     // q in [1, 2^31); s in [0, 30].
@@ -35,59 +34,4 @@ pub(crate) fn divide(v: &[i32; 3]) -> (i64, i64) {
         if x < 0 { -(m as i64) } else { m as i64 }
     };
     (one(v[0]), one(v[1]))
-}
-
-/// Seeds for [`recip62`]: `⌊2^24 / (257 + i)⌋`, the reciprocal of the
-/// top of the interval `[256 + i, 257 + i)·2^22` that a normalized
-/// divisor with those leading bits lies in, shifted to 16 bits. Never
-/// above the true reciprocal, within 1/256 of it.
-const RECIP_SEED: [u16; 256] = {
-    let mut t = [0u16; 256];
-    let mut i = 0;
-    while i < 256 {
-        t[i] = ((1u32 << 24) / (257 + i as u32)) as u16;
-        i += 1;
-    }
-    t
-};
-
-/// `⌈2^62 / d⌉` for `d` in `[2^30, 2^31)` (so the result is in
-/// `(2^31, 2^32]`), without a division: a table seed good to 8 bits, two
-/// Newton steps `x ← x + x·(2^62 − d·x)/2^62` (each doubles the correct
-/// bits and, truncating, stays at or below the true reciprocal), then
-/// unit steps up to the ceiling. Exact for every `d`: checked for all
-/// 2^30 divisors by the release-mode test `recip62_exhaustive`, which
-/// `.ci/run` runs (`cargo test --release -p sightline --features full
-/// --lib recip62_exhaustive -- --ignored`), and on a sample by
-/// `recip62_is_the_exact_ceiling` in every test run. At most 3 unit steps
-/// were needed (an instrumented copy on the host); the code takes 4. Any
-/// other `d` is clamped into the range first.
-#[inline]
-pub(crate) fn recip62(d: u32) -> u64 {
-    let d = d.clamp(1 << 30, (1 << 31) - 1);
-    let s0 = RECIP_SEED[((d >> 22) & 0xff) as usize] as u32;
-    // First Newton step in 32-bit arithmetic (ARMv6-M has only a
-    // 32×32→32 multiply): p = d·s0/2^15 from d's two 15/16-bit halves (the
-    // seed is below 2^24/(d >> 22), so d·s0 < 2^46 and p < 2^31), e its
-    // shortfall from 2^31 (below 2^31/128), then x = s0·2^16·(1 + e/2^31).
-    // The products fit u32. Rounding can leave x a few units above the
-    // reciprocal, which is why it steps back 8 units (2^−29 of it).
-    let p = (d >> 15) * s0 + (((d & 0x7fff) * s0) >> 15);
-    let e = (1u32 << 31).saturating_sub(p);
-    let mut x = ((s0 as u64) << 16) + ((s0 * (e >> 8)) >> 7) as u64 - 8;
-    // Second step in 64-bit arithmetic: x ≤ 2^62/d, so d·x ≤ 2^62 and
-    // e ≥ 0; x is within 2^−14 of the reciprocal, so e >> 22 < 2^32 and
-    // the product fits u64.
-    let two62 = 1u64 << 62;
-    let e = two62 - d as u64 * x;
-    x += (x * (e >> 22)) >> 40;
-    // Now 2^62/d − x is a few units at most: step up to the ceiling,
-    // branch-free (LLVM turns an early-exit loop into a 64-bit division).
-    let mut p = d as u64 * x;
-    for _ in 0..4 {
-        let below = (p < two62) as u64;
-        p += d as u64 & below.wrapping_neg();
-        x += below;
-    }
-    x
 }

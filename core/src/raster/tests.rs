@@ -1136,40 +1136,6 @@ proptest! {
     }
 }
 
-/// Every one of the 2^30 divisors (about 10 s in release, far longer in a
-/// debug build, hence opt-in):
-/// `cargo test --release -p sightline --features full --lib recip62_exhaustive -- --ignored`.
-/// The sampled test above runs by default.
-#[cfg(feature = "perspective")]
-#[test]
-#[ignore = "2^30 divisors: run in release with --ignored (about 10 s)"]
-fn recip62_exhaustive() {
-    use super::persp_div::recip62;
-    for d in (1u32 << 30)..(1u32 << 31) {
-        let exact = (1u128 << 62).div_ceil(d as u128) as u64;
-        assert_eq!(recip62(d), exact, "d = {d}");
-    }
-}
-
-#[cfg(feature = "perspective")]
-#[test]
-fn recip62_is_the_exact_ceiling() {
-    use super::persp_div::recip62;
-    let exact = |d: u32| (1u128 << 62).div_ceil(d as u128) as u64;
-    // Both ends, every seed interval's ends and a stride through the rest.
-    let mut ds: Vec<u32> = vec![1 << 30, (1 << 31) - 1];
-    for i in 0..=256u32 {
-        let b = (256 + i) << 22;
-        ds.extend([b.wrapping_sub(1), b, b + 1]);
-    }
-    ds.extend((0..200_000u32).map(|k| (1 << 30) + k.wrapping_mul(5_368_709) % (1 << 30)));
-    for d in ds {
-        if (1 << 30..1 << 31).contains(&d) {
-            assert_eq!(recip62(d), exact(d), "d = {d}");
-        }
-    }
-}
-
 #[cfg(feature = "perspective")]
 proptest! {
     /// Subdivided runs with any varyings, including ones the pipeline never

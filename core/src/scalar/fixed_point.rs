@@ -26,7 +26,7 @@
 //! to within one step of any format up to `Fx<U24>`; the measured errors for
 //! I16F16 are in the crate's tests and in the accuracy report.
 
-use super::Scalar;
+use super::{Scalar, recip62};
 use core::cmp::Ordering;
 use core::fmt;
 use core::marker::PhantomData;
@@ -245,6 +245,32 @@ pub(crate) fn widening_mul(a: i32, b: i32) -> i64 {
     {
         a as i64 * b as i64
     }
+}
+
+/// The exact product `a·b` of unsigned 32-bit values, as
+/// [`widening_mul`] does it for signed ones (four 16×16 multiplies on
+/// ARMv6-M, the hardware's widening multiply elsewhere).
+#[inline(always)]
+pub(crate) fn widening_mul_u32(a: u32, b: u32) -> u64 {
+    #[cfg(all(target_arch = "arm", not(target_has_atomic = "ptr")))]
+    {
+        split_widening_mul_u32(a, b)
+    }
+    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
+    {
+        a as u64 * b as u64
+    }
+}
+
+/// `a·b = aₕbₕ·2³² + (aₕbₗ + aₗbₕ)·2¹⁶ + aₗbₗ` with 16-bit halves; every
+/// partial product is below 2³², and the sum below 2⁶⁴.
+#[inline(always)]
+#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
+pub(crate) fn split_widening_mul_u32(a: u32, b: u32) -> u64 {
+    let (al, ah) = (a & 0xffff, a >> 16);
+    let (bl, bh) = (b & 0xffff, b >> 16);
+    let mid = (ah * bl) as u64 + (al * bh) as u64;
+    (((ah * bh) as u64) << 32) + (mid << 16) + (al * bl) as u64
 }
 
 /// `a·b` from 16-bit halves: with `a = aₕ·2¹⁶ + aₗ` (`aₗ` unsigned, `aₕ`
@@ -546,6 +572,51 @@ impl<Frac: LeEqU32 + 'static> Scalar for Fx<Frac> {
         } else {
             Self::fits(Self::div_wide(self.bits, rhs.bits))
         }
+    }
+    fn checked_quotients<const N: usize>(nums: [Self; N], d: Self) -> [Option<Self>; N] {
+        let f = Self::FRAC;
+        let dm = d.bits.unsigned_abs();
+        // d' = |d|·2^s in [2^30, 2^31); |d| = 0 or 2^31 divide one by one.
+        if dm == 0 || dm >= 1 << 31 {
+            return nums.map(|n| n.checked_div(d));
+        }
+        let s = dm.leading_zeros() - 1;
+        let sh = 62 - f as i32 - s as i32;
+        if sh < 0 {
+            return nums.map(|n| n.checked_div(d));
+        }
+        let sh = sh as u32;
+        // r = 2^62/d' + ε with 0 ≤ ε < 1, so |n|·r/2^sh exceeds the exact
+        // |n|·2^f/|d| by |n|·ε/2^sh: less than one while |n| < 2^sh.
+        let r = recip62(dm << s);
+        nums.map(|n| {
+            let a = n.bits.unsigned_abs();
+            if sh < 32 && a >= 1 << sh {
+                return n.checked_div(d);
+            }
+            // a ≤ 2^31 and r ≤ 2^32: the product fits u64.
+            let p = if r >> 32 != 0 {
+                (a as u64) << 32
+            } else {
+                widening_mul_u32(a, r as u32)
+            };
+            // ⌊exact⌋ or one more; beyond 2^32 the quotient is out of range.
+            let q = p >> sh;
+            if q >> 32 != 0 {
+                return None;
+            }
+            let num = (a as u64) << f;
+            let qd = widening_mul_u32(q as u32, dm);
+            let (q, rem) = if qd > num {
+                (q - 1, num - (qd - dm as u64))
+            } else {
+                (q, num - qd)
+            };
+            // Round half away from zero, as `div_wide`: rem < |d| < 2^31.
+            let q = if 2 * rem >= dm as u64 { q + 1 } else { q };
+            let q = q as i64;
+            Self::fits(if (n.bits < 0) != (d.bits < 0) { -q } else { q })
+        })
     }
     fn sub_mul_noting_overflow(self, a: Self, b: Self, overflow: &mut bool) -> Self {
         let f = Self::FRAC;

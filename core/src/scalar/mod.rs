@@ -29,6 +29,8 @@ pub(crate) use fixed_point::widening_mul;
 mod float;
 mod float_math;
 pub(crate) mod predicates;
+mod recip;
+pub(crate) use recip::recip62;
 
 pub use fixed_point::{Fx, I2F30, I16F16, I20F12, I24F8};
 
@@ -148,6 +150,16 @@ pub trait Scalar:
     fn sub_mul_noting_overflow(self, a: Self, b: Self, overflow: &mut bool) -> Self;
     /// `self / d` with the same reporting as [`Scalar::sub_mul_noting_overflow`].
     fn div_noting_overflow(self, d: Self, overflow: &mut bool) -> Self;
+
+    /// `n.checked_div(d)` for every `n` of `nums`: the same values, computed
+    /// together. Fixed point divides by one shared reciprocal of `d` (a
+    /// table seed and two Newton steps, then an exact correction of each
+    /// quotient by one multiply), where each `/` would be a 64-bit library
+    /// division on a core without a divide instruction; floats divide each.
+    #[must_use]
+    fn checked_quotients<const N: usize>(nums: [Self; N], d: Self) -> [Option<Self>; N] {
+        nums.map(|n| n.checked_div(d))
+    }
 
     /// The smaller of two values (`other` if they are unordered).
     ///

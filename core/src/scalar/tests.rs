@@ -3,6 +3,8 @@
 
 use super::*;
 use crate::test_util::Rng;
+use std::vec;
+use std::vec::Vec;
 
 /// One step of the representation near `x` (an ulp for floats, EPSILON for
 /// fixed point), in f64.
@@ -414,4 +416,127 @@ fn from_f32_exhaustive() {
             "bits {b:#010x}"
         );
     }
+}
+
+/// Every one of the 2^30 divisors (about 10 s in release, far longer in a
+/// debug build, hence opt-in):
+/// `cargo test --release -p sightline --features full --lib recip62_exhaustive -- --ignored`.
+/// The sampled test above runs by default.
+#[test]
+#[ignore = "2^30 divisors: run in release with --ignored (about 10 s)"]
+fn recip62_exhaustive() {
+    use super::recip62;
+    for d in (1u32 << 30)..(1u32 << 31) {
+        let exact = (1u128 << 62).div_ceil(d as u128) as u64;
+        assert_eq!(recip62(d), exact, "d = {d}");
+    }
+}
+
+#[test]
+fn recip62_is_the_exact_ceiling() {
+    use super::recip62;
+    let exact = |d: u32| (1u128 << 62).div_ceil(d as u128) as u64;
+    // Both ends, every seed interval's ends and a stride through the rest.
+    let mut ds: Vec<u32> = vec![1 << 30, (1 << 31) - 1];
+    for i in 0..=256u32 {
+        let b = (256 + i) << 22;
+        ds.extend([b.wrapping_sub(1), b, b + 1]);
+    }
+    ds.extend((0..200_000u32).map(|k| (1 << 30) + k.wrapping_mul(5_368_709) % (1 << 30)));
+    for d in ds {
+        if (1 << 30..1 << 31).contains(&d) {
+            assert_eq!(recip62(d), exact(d), "d = {d}");
+        }
+    }
+}
+
+#[test]
+fn split_widening_mul_u32_is_exact() {
+    use super::fixed_point::split_widening_mul_u32;
+    let edges = [
+        0u32,
+        1,
+        2,
+        0xffff,
+        0x1_0000,
+        0x8000_0000,
+        0x7fff_ffff,
+        u32::MAX,
+        u32::MAX - 1,
+    ];
+    for &a in &edges {
+        for &b in &edges {
+            assert_eq!(split_widening_mul_u32(a, b), a as u64 * b as u64, "{a}·{b}");
+        }
+    }
+    let mut rng = Rng::new(7);
+    for _ in 0..1 << 18 {
+        let x = rng.next_u64();
+        let (a, b) = (x as u32, (x >> 32) as u32);
+        assert_eq!(split_widening_mul_u32(a, b), a as u64 * b as u64, "{a}·{b}");
+    }
+}
+
+/// `checked_quotients` (one shared reciprocal, then an exact correction)
+/// gives exactly `checked_div` for each numerator, in every fraction
+/// width: divisors at the ends of the range, at every power of two and
+/// its neighbours (the normalization shifts), numerators at both ends and
+/// next to rounding ties, and a pseudo-random sweep of the full bit range.
+fn quotients_equal_checked_div<T: Scalar>(from_bits: fn(i32) -> T) {
+    let mut special = vec![
+        0i32,
+        1,
+        -1,
+        2,
+        -2,
+        3,
+        i32::MAX,
+        i32::MIN,
+        i32::MAX - 1,
+        i32::MIN + 1,
+    ];
+    for k in 0..31 {
+        let p = 1i32 << k;
+        special.extend([p, p - 1, p + 1, -p, -p + 1, -p - 1]);
+    }
+    let check = |n: [i32; 3], d: i32| {
+        let (n, d) = (n.map(from_bits), from_bits(d));
+        let got = T::checked_quotients(n, d);
+        for k in 0..3 {
+            assert_eq!(
+                got[k],
+                n[k].checked_div(d),
+                "{} {:?} / {:?}",
+                T::NAME,
+                n[k],
+                d
+            );
+        }
+    };
+    for &d in &special {
+        for &a in &special {
+            check([a, a.wrapping_add(d / 2), a.wrapping_sub(d / 2)], d);
+        }
+    }
+    let mut rng = Rng::new(11);
+    for _ in 0..1 << 17 {
+        let x = rng.next_u64();
+        let y = rng.next_u64();
+        // Divisors of every magnitude: shift a random value right by 0..31.
+        let d = (x as i32) >> (y % 31);
+        // Numerators of every magnitude, and ties: a multiple of d plus half.
+        let a = ((x >> 32) as i32) >> ((y >> 8) % 31);
+        let tie = (((y >> 16) as i32) >> 16)
+            .wrapping_mul(d)
+            .wrapping_add(d / 2);
+        check([a, tie, (y >> 40) as i32], d);
+    }
+}
+
+#[test]
+fn quotients_equal_checked_div_every_format() {
+    quotients_equal_checked_div::<I16F16>(I16F16::from_bits);
+    quotients_equal_checked_div::<I24F8>(I24F8::from_bits);
+    quotients_equal_checked_div::<I20F12>(I20F12::from_bits);
+    quotients_equal_checked_div::<I2F30>(I2F30::from_bits);
 }

@@ -60,8 +60,10 @@ static SCENES: [&Scene<'static>; 5] = builtin::ALL;
 
 const WIDTH: u16 = 320;
 const HEIGHT: u16 = 240;
-/// Rows per strip: 320·16·(2 + 2) bytes = 20 KiB of buffers.
-const ROWS: u16 = 16;
+/// Rows per strip: 320·15·(2 + 2) = 19 200 bytes of buffers, 16 strips a
+/// frame. (16 rows, 20 480 bytes, put the textured corridor's RAM 856
+/// bytes over the 24 KiB goal.) `tests/mcu/run` reads this line.
+const ROWS: u16 = 15;
 const BAND: usize = WIDTH as usize * ROWS as usize;
 
 static mut COLOR: [Color; BAND] = [Color::new(0, 0, 0); BAND];

@@ -1,7 +1,8 @@
 //! `⌈2^62 / d⌉` without a division instruction, for the fixed-point
 //! divisions that share a divisor (`Scalar::checked_quotients`) and the
-//! raster's perspective divide: ARMv6-M (Cortex-M0) has no divide instruction, and a 64-bit
-//! division in compiler-builtins costs hundreds of instructions there.
+//! raster's perspective divide: ARMv6-M (Cortex-M0) has no divide
+//! instruction, and a 64-bit division in compiler-builtins costs hundreds
+//! of instructions there.
 
 /// Seeds for [`recip62`]: `⌊2^24 / (257 + i)⌋`, the reciprocal of the
 /// top of the interval `[256 + i, 257 + i)·2^22` that a normalized

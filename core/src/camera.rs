@@ -246,6 +246,35 @@ impl<S: Scalar> Camera<S> {
         ))
     }
 
+    /// The camera whose world→view transform is `world_to_view`, with its
+    /// eye at `position`, both used as given (no arithmetic): for a camera
+    /// computed ahead of time, for example by `scene::export` (feature
+    /// `export`) from any of the other
+    /// forms, so that a firmware links neither the solver nor the
+    /// normalization. The renderers expect `world_to_view` to map
+    /// `position` to the origin, as every other constructor makes it.
+    ///
+    /// # Errors
+    /// [`CameraError::NonFinite`].
+    pub fn from_world_to_view(
+        position: Vec3<S>,
+        world_to_view: Affine3<S>,
+    ) -> Result<Self, CameraError> {
+        let m = &world_to_view.matrix;
+        let finite = position.is_finite()
+            && world_to_view.translation.is_finite()
+            && m.row(0).is_finite()
+            && m.row(1).is_finite()
+            && m.row(2).is_finite();
+        if !finite {
+            return Err(CameraError::NonFinite);
+        }
+        Ok(Self {
+            world_to_view,
+            position,
+        })
+    }
+
     /// The same camera in scalar `T`, each coefficient rounded: solve a
     /// general camera in `f32` or `f64`, then render in fixed point.
     #[must_use]

@@ -439,3 +439,43 @@ fn fixed_projection_one_division_is_within_a_thousandth_pixel() {
     std::println!("I16F16 one-division projection: worst {worst:.2e} px");
     assert!(worst < 1e-3, "{worst} px");
 }
+
+/// A camera rebuilt from its world→view transform is the same camera,
+/// bit for bit; a non-finite entry is refused.
+fn from_world_to_view_is_exact<T: Scalar>() {
+    let eye = v3::<T>(3.0, 2.5, 5.0);
+    let cam = Camera::look_at(eye, v3(0.0, 0.0, 0.0), v3(0.0, 1.0, 0.0)).unwrap();
+    let again = Camera::from_world_to_view(cam.position(), *cam.world_to_view()).unwrap();
+    assert!(again == cam, "{}", T::NAME);
+    let angles = Camera::from_angles(eye, Euler::new(T::ZERO, T::HALF, T::ONE));
+    let again = Camera::from_world_to_view(angles.position(), *angles.world_to_view()).unwrap();
+    assert!(again == angles, "{}", T::NAME);
+}
+
+#[test]
+fn from_world_to_view_every_scalar() {
+    from_world_to_view_is_exact::<f32>();
+    from_world_to_view_is_exact::<f64>();
+    from_world_to_view_is_exact::<I16F16>();
+}
+
+#[test]
+fn from_world_to_view_refuses_non_finite() {
+    let cam = Camera::look_at(v3::<f32>(3.0, 2.5, 5.0), Vec3::ZERO, v3(0.0, 1.0, 0.0)).unwrap();
+    let mut m = *cam.world_to_view();
+    m.matrix.m[1][2] = f32::NAN;
+    assert_eq!(
+        Camera::from_world_to_view(cam.position(), m),
+        Err(CameraError::NonFinite)
+    );
+    let mut t = *cam.world_to_view();
+    t.translation.z = f32::INFINITY;
+    assert_eq!(
+        Camera::from_world_to_view(cam.position(), t),
+        Err(CameraError::NonFinite)
+    );
+    assert_eq!(
+        Camera::from_world_to_view(Vec3::new(f32::NAN, 0.0, 0.0), *cam.world_to_view()),
+        Err(CameraError::NonFinite)
+    );
+}

@@ -296,3 +296,48 @@ fn a_material_changed_after_preparing_draws_without_panicking() {
     let mut fb = Framebuffer::new(&mut px, 32, 24, 32).unwrap();
     assert!(frame.draw(&mut fb, &mut NoDepth).drawn > 0);
 }
+
+/// A renderer rebuilt from its own parts (`from_prepared`, what exported
+/// const data does) draws the same pixels; a non-finite light is refused
+/// by `PreparedLight::from_light`.
+#[test]
+fn renderer_from_prepared_parts_draws_the_same() {
+    let (w, h) = (64u16, 48u16);
+    let a = Renderer::<I16F16>::new(&CUBE, w, h).unwrap();
+    let view = *a.view();
+    let camera = crate::camera::Camera::from_world_to_view(
+        view.camera.position(),
+        *view.camera.world_to_view(),
+    )
+    .unwrap();
+    let (near, far) = a.depth_range();
+    let light = PreparedLight::from_unit(
+        a.light().direction(),
+        a.light().ambient(),
+        a.light().diffuse(),
+    );
+    let b =
+        Renderer::from_prepared(View { camera, ..view }, near, far, light, a.background()).unwrap();
+    let need = CUBE.storage();
+    let mut vec3s = vec![Vec3::<I16F16>::ZERO; need.vec3s];
+    let mut objects = vec![PreparedObject::EMPTY; need.objects];
+    let objects = CUBE.prepare(&mut vec3s, &mut objects).unwrap();
+    let mut scratch = vec![crate::pipeline::MeshVertex::default(); need.vertices];
+    let mut px = [
+        vec![SENTINEL; usize::from(w) * usize::from(h)],
+        vec![SENTINEL; usize::from(w) * usize::from(h)],
+    ];
+    for (r, buf) in [&a, &b].into_iter().zip(px.iter_mut()) {
+        let frame = r.project(objects, &mut scratch).unwrap();
+        let mut fb = Framebuffer::new(buf, w, h, usize::from(w)).unwrap();
+        assert!(frame.draw(&mut fb, &mut NoDepth).drawn > 0);
+    }
+    assert!(px[0] == px[1]);
+    let mut bad = CUBE.light;
+    bad.diffuse = f32::NAN;
+    assert_eq!(
+        PreparedLight::<I16F16>::from_light(&bad),
+        Err(SceneError::NonFinite { what: "light" })
+    );
+    assert!(PreparedLight::<I16F16>::from_light(&CUBE.light).unwrap() == a.light());
+}

@@ -22,15 +22,24 @@ pub fn quantize_intensity<S: Scalar>(i: S) -> u8 {
     (v >> 16).clamp(0, 255) as u8
 }
 
-/// The light in scalar `S`.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Lighting<S> {
+/// The light in the render scalar `S`: a unit direction towards the light,
+/// and the ambient and diffuse terms of the material model (see the
+/// module docs). [`Renderer`](super::Renderer) holds one; build it from a
+/// scene's [`Light`] with [`PreparedLight::from_light`], or from values in
+/// `S` with [`PreparedLight::from_unit`] (for example `const` data written
+/// by `scene::export`, feature `export`, so that no `f32` code runs on the
+/// device).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PreparedLight<S> {
     dir: Vec3<S>,
     ambient: S,
     diffuse: S,
 }
 
-impl<S: Scalar> Lighting<S> {
+impl<S: Scalar> PreparedLight<S> {
+    /// The light of a description, its direction normalized in `S` (a zero
+    /// direction leaves only the ambient term). The caller has checked that
+    /// every number is finite.
     pub(crate) fn new(light: &Light) -> Self {
         Self {
             dir: vec3::<S>(light.direction)
@@ -39,6 +48,52 @@ impl<S: Scalar> Lighting<S> {
             ambient: S::from_f32(light.ambient),
             diffuse: S::from_f32(light.diffuse),
         }
+    }
+
+    /// The light of a description: its direction normalized in `S` (a
+    /// zero direction leaves only the ambient term), its terms rounded to
+    /// `S`.
+    ///
+    /// # Errors
+    /// [`SceneError::NonFinite`](super::SceneError::NonFinite) (naming the
+    /// light) when a number is NaN or infinite.
+    pub fn from_light(light: &Light) -> Result<Self, super::SceneError> {
+        if super::light_is_finite(light) {
+            Ok(Self::new(light))
+        } else {
+            Err(super::SceneError::NonFinite { what: "light" })
+        }
+    }
+
+    /// A light from its parts in `S`, used as given: `direction` points
+    /// towards the light and should have unit length (a longer one
+    /// brightens the diffuse term in proportion; zero leaves only
+    /// `ambient`).
+    #[must_use]
+    pub const fn from_unit(direction: Vec3<S>, ambient: S, diffuse: S) -> Self {
+        Self {
+            dir: direction,
+            ambient,
+            diffuse,
+        }
+    }
+
+    /// The direction towards the light.
+    #[must_use]
+    pub fn direction(&self) -> Vec3<S> {
+        self.dir
+    }
+
+    /// The ambient term.
+    #[must_use]
+    pub fn ambient(&self) -> S {
+        self.ambient
+    }
+
+    /// The diffuse term.
+    #[must_use]
+    pub fn diffuse(&self) -> S {
+        self.diffuse
     }
 
     /// The same light seen from an object turned by the rotation `rot`
@@ -169,7 +224,7 @@ pub(crate) fn vertex_normal<S: Scalar>(
 pub(crate) fn vertex_intensities<S: Scalar>(
     mesh: &MeshData<'_>,
     rot: &Mat3<S>,
-    light: &Lighting<S>,
+    light: &PreparedLight<S>,
     tri: [u16; 3],
 ) -> [S; 3] {
     let face = face_normal(mesh, rot, tri);

@@ -15,7 +15,8 @@
 //! | `prepared.rs` | the prepared scene, made once: [`PreparedMesh`] (positions and normals in the render scalar), [`PreparedObject`], [`Scene::prepare`] into caller storage |
 //! | `render.rs` | the raster renderer, per frame: [`Renderer::project`] (each vertex once) and [`Frame::draw`] (per band) |
 //! | `ray/` | the ray renderer (feature `raycast`): `RayScene`, per-pixel and per-row ray casting, shaded at the hit; with `grid`, a uniform grid per object in caller storage |
-//! | `material.rs` | the material model both renderers use |
+//! | `material.rs` | the material model both renderers use, and [`PreparedLight`] |
+//! | `export.rs` | a prepared scene written as Rust source, for `const` data in firmware (feature `export`) |
 //! | `builtin/` | the demo scenes as `const` data, shared by firmware and the host simulator (feature `demo`) |
 //!
 //! With feature `serde`, the description types that a scene file spells
@@ -32,6 +33,14 @@
 //! ```
 //!
 //! The [`Renderer`] docs show a whole first render.
+//!
+//! A firmware can do the first two steps on the host instead: the
+//! `export` module (feature `export`) writes the prepared objects and the
+//! renderer as Rust source, which the firmware includes as `const` data;
+//! it then builds them with [`PreparedMesh::new`],
+//! [`PreparedObject::new`], [`Camera::from_world_to_view`](crate::camera::Camera::from_world_to_view),
+//! [`PreparedLight::from_unit`] and [`Renderer::from_prepared`], which do
+//! no arithmetic, so no `f32` code runs on the device.
 //!
 //! # Data forms
 //!
@@ -82,6 +91,8 @@ mod build;
 pub mod de;
 mod description;
 mod error;
+#[cfg(feature = "export")]
+pub mod export;
 mod material;
 mod prepared;
 #[cfg(feature = "raycast")]
@@ -97,7 +108,7 @@ pub use description::{
     ProjectionSpec, Scene, SceneObject, SceneSphere, TextureMode, View, vec3,
 };
 pub use error::SceneError;
-pub use material::quantize_intensity;
+pub use material::{PreparedLight, quantize_intensity};
 pub use prepared::{MeshError, Normals, PreparedMesh, PreparedObject, Storage, storage_len};
 #[cfg(feature = "grid")]
 pub use ray::{RayBuffers, RayStorage, RayTriangle};

@@ -15,7 +15,7 @@
 //! [`Renderer::with_far_clip`] asks for it, or a side plane's guard band) are rebuilt in view space and
 //! go through Sutherland–Hodgman clipping.
 
-use super::material::Lighting;
+use super::material::PreparedLight;
 use super::prepared::{ObjectFrame, PreparedMesh, PreparedObject};
 use super::{Color, Light, Material, Scene, SceneError, View};
 #[cfg(feature = "perspective")]
@@ -101,7 +101,9 @@ pub struct RasterStats {
 pub struct Renderer<S> {
     view: View<S>,
     pipeline: Pipeline<S>,
-    light: Lighting<S>,
+    near: S,
+    far: S,
+    light: PreparedLight<S>,
     background: Color,
 }
 
@@ -165,9 +167,25 @@ impl<S: Scalar> Renderer<S> {
         light: &Light,
         background: Color,
     ) -> Result<Self, SceneError> {
-        if !super::light_is_finite(light) {
-            return Err(SceneError::NonFinite { what: "light" });
-        }
+        let light = PreparedLight::from_light(light)?;
+        Self::from_prepared(view, near, far, light, background)
+    }
+
+    /// [`Renderer::from_view`] with a light already in `S`: together with
+    /// [`Camera::from_world_to_view`](crate::camera::Camera::from_world_to_view)
+    /// and [`PreparedMesh::new`], a renderer built from `const` data (as
+    /// `scene::export`, feature `export`, writes it) does no `f32`
+    /// arithmetic.
+    ///
+    /// # Errors
+    /// [`SceneError::Pipeline`] for a bad depth range or projection.
+    pub fn from_prepared(
+        view: View<S>,
+        near: S,
+        far: S,
+        light: PreparedLight<S>,
+        background: Color,
+    ) -> Result<Self, SceneError> {
         let pipeline = Pipeline::new(
             view.projection,
             view.width,
@@ -180,7 +198,9 @@ impl<S: Scalar> Renderer<S> {
         Ok(Self {
             view,
             pipeline,
-            light: Lighting::new(light),
+            near,
+            far,
+            light,
             background,
         })
     }
@@ -215,8 +235,27 @@ impl<S: Scalar> Renderer<S> {
         if !super::light_is_finite(light) {
             return Err(SceneError::NonFinite { what: "light" });
         }
-        self.light = Lighting::new(light);
+        self.light = PreparedLight::new(light);
         Ok(())
+    }
+
+    /// The light, in `S`.
+    #[must_use]
+    pub fn light(&self) -> PreparedLight<S> {
+        self.light
+    }
+
+    /// The view depths of the near and far planes.
+    #[must_use]
+    pub fn depth_range(&self) -> (S, S) {
+        (self.near, self.far)
+    }
+
+    /// Whether it clips at the far plane (only ever with `clip-far`, see
+    /// [`with_far_clip`](Self::with_far_clip)).
+    #[must_use]
+    pub fn clips_far(&self) -> bool {
+        self.pipeline.clips_far()
     }
 
     /// The background color [`Frame::draw`] fills with.

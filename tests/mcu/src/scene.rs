@@ -21,15 +21,14 @@
 #![no_main]
 
 use core::hint::black_box;
-#[cfg(any(feature = "scene-flat", feature = "scene-gouraud"))]
-use sightline::camera::Camera;
+#[cfg(feature = "scene-all")]
 use sightline::math::Vec3;
 use sightline::pipeline::MeshVertex;
 use sightline::raster::DepthBuffer;
 use sightline::scalar::I16F16;
 #[cfg(feature = "scene-all")]
-use sightline::scene;
-use sightline::scene::{Color, PreparedObject, Renderer, Scene, Storage, builtin};
+use sightline::scene::{self, PreparedObject, Renderer, Scene, Storage, builtin};
+use sightline::scene::{Color, Frame};
 use sightline::target::Band;
 
 #[cfg(not(any(
@@ -49,12 +48,25 @@ compile_error!("select the scenes with one scene-* feature");
 ))]
 compile_error!("select one scene-* feature only (build with --no-default-features)");
 
+/// The flat, Gouraud and textured firmwares draw one scene each, prepared
+/// on the host by build.rs (`sightline::scene::export`) into const I16F16
+/// data: no f32 arithmetic, normalization or camera solving runs here
+/// (`tests/mcu/run` checks that they link no solver and no soft float).
 #[cfg(feature = "scene-flat")]
-static SCENES: [&Scene<'static>; 1] = [&builtin::CUBE];
+mod prepared {
+    include!(concat!(env!("OUT_DIR"), "/cube.rs"));
+}
 #[cfg(feature = "scene-gouraud")]
-static SCENES: [&Scene<'static>; 1] = [&builtin::BUNNY];
+mod prepared {
+    include!(concat!(env!("OUT_DIR"), "/bunny.rs"));
+}
 #[cfg(feature = "scene-texture")]
-static SCENES: [&Scene<'static>; 1] = [&builtin::CORRIDOR];
+mod prepared {
+    include!(concat!(env!("OUT_DIR"), "/corridor.rs"));
+}
+
+/// The full firmware prepares every built-in scene at run time, from its
+/// f32 description, as a host does.
 #[cfg(feature = "scene-all")]
 static SCENES: [&Scene<'static>; 5] = builtin::ALL;
 
@@ -69,28 +81,76 @@ const BAND: usize = WIDTH as usize * ROWS as usize;
 static mut COLOR: [Color; BAND] = [Color::new(0, 0, 0); BAND];
 static mut DEPTH: [u16; BAND] = [0; BAND];
 
+/// Scratch vertices a frame needs.
+#[cfg(not(feature = "scene-all"))]
+const VERTICES: usize = {
+    assert!(prepared::WIDTH == WIDTH && prepared::HEIGHT == HEIGHT);
+    prepared::VERTICES
+};
 /// The largest storage any scene of [`SCENES`] needs.
+#[cfg(feature = "scene-all")]
 const STORAGE: Storage = Storage::for_any(&SCENES);
+#[cfg(feature = "scene-all")]
+const VERTICES: usize = STORAGE.vertices;
+#[cfg(feature = "scene-all")]
 static mut VEC3S: [Vec3<I16F16>; STORAGE.vec3s] = [Vec3::ZERO; STORAGE.vec3s];
-static mut SCRATCH: [MeshVertex<1>; STORAGE.vertices] = [MeshVertex {
+static mut SCRATCH: [MeshVertex<1>; VERTICES] = [MeshVertex {
     outcode: 0,
     screen: sightline::raster::ScreenVertex::new(0, 0, 0, [0]),
-}; STORAGE.vertices];
+}; VERTICES];
 
-/// FNV-1a over every pixel of every scene, row by row.
-fn render() -> u64 {
-    // SAFETY: the only references to the buffers, taken once.
-    let (color, depth, vec3s, scratch) = unsafe {
+/// Draws `frame` strip by strip into the band buffers, hashing each.
+fn draw_strips(frame: &Frame<'_, '_, I16F16>, h: &mut u64) -> Result<(), ()> {
+    // SAFETY: the only references to the band buffers, taken once per
+    // call and dropped at its end; `render` calls this from one thread.
+    let (color, depth) = unsafe {
         (
             &mut *core::ptr::addr_of_mut!(COLOR),
             &mut *core::ptr::addr_of_mut!(DEPTH),
+        )
+    };
+    for y0 in (0..HEIGHT).step_by(ROWS as usize) {
+        let w = WIDTH as usize;
+        let mut band = Band::new(&mut color[..], WIDTH, ROWS, w, y0 as i32).map_err(|_| ())?;
+        let mut z = DepthBuffer::new(&mut depth[..], WIDTH, ROWS, w, y0 as i32).map_err(|_| ())?;
+        z.clear();
+        frame.draw(&mut band, &mut z);
+        hash_pixels(h, &color[..]);
+    }
+    Ok(())
+}
+
+/// FNV-1a over every pixel of the scene, row by row (0 on any error).
+#[cfg(not(feature = "scene-all"))]
+fn render() -> u64 {
+    // SAFETY: the only reference to the scratch, taken once.
+    let scratch = unsafe { &mut *core::ptr::addr_of_mut!(SCRATCH) };
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    let (Ok(mut objects), Ok(renderer)) = (prepared::objects(), prepared::renderer()) else {
+        return 0;
+    };
+    let Ok(frame) = renderer.project(black_box(&mut objects[..]), &mut scratch[..]) else {
+        return 0;
+    };
+    match draw_strips(&frame, &mut h) {
+        Ok(()) => h,
+        Err(()) => 0,
+    }
+}
+
+/// FNV-1a over every pixel of every scene, row by row (0 on any error).
+#[cfg(feature = "scene-all")]
+fn render() -> u64 {
+    // SAFETY: the only references to these buffers, taken once.
+    let (color, vec3s, scratch) = unsafe {
+        (
+            &mut *core::ptr::addr_of_mut!(COLOR),
             &mut *core::ptr::addr_of_mut!(VEC3S),
             &mut *core::ptr::addr_of_mut!(SCRATCH),
         )
     };
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
     for scene in black_box(&SCENES).iter() {
-        #[cfg(feature = "scene-all")]
         if !scene.spheres.is_empty() {
             let Ok(view) = scene.view::<I16F16>(WIDTH, HEIGHT) else {
                 return 0;
@@ -113,66 +173,17 @@ fn render() -> u64 {
         let Ok(objects) = scene.prepare(&mut vec3s[..], &mut objects) else {
             return 0;
         };
-        let Ok(renderer) = renderer(scene) else {
+        let Ok(renderer) = Renderer::new(scene, WIDTH, HEIGHT) else {
             return 0;
         };
         let Ok(frame) = renderer.project(objects, &mut scratch[..]) else {
             return 0;
         };
-        for y0 in (0..HEIGHT).step_by(ROWS as usize) {
-            let w = WIDTH as usize;
-            let Ok(mut band) = Band::new(&mut color[..], WIDTH, ROWS, w, y0 as i32) else {
-                return 0;
-            };
-            let Ok(mut z) = DepthBuffer::new(&mut depth[..], WIDTH, ROWS, w, y0 as i32) else {
-                return 0;
-            };
-            z.clear();
-            frame.draw(&mut band, &mut z);
-            hash_pixels(&mut h, &color[..]);
+        if draw_strips(&frame, &mut h).is_err() {
+            return 0;
         }
     }
     h
-}
-
-/// The flat and Gouraud firmwares choose their camera form at compile
-/// time (the cube's look-at, the bunny's angles) and pass the camera to
-/// `Renderer::with_camera`, so they link no camera solver; `tests/mcu/run`
-/// checks that. The full firmware takes any `CameraSpec` at run time.
-#[cfg(feature = "scene-flat")]
-fn renderer(scene: &Scene<'_>) -> Result<Renderer<I16F16>, ()> {
-    use sightline::scene::{CameraSpec, vec3};
-    let CameraSpec::LookAt { eye, target, up } = scene.camera else {
-        return Err(());
-    };
-    let camera = Camera::look_at(vec3(eye), vec3(target), vec3(up)).map_err(|_| ())?;
-    Renderer::with_camera(scene, camera, WIDTH, HEIGHT).map_err(|_| ())
-}
-
-#[cfg(feature = "scene-gouraud")]
-fn renderer(scene: &Scene<'_>) -> Result<Renderer<I16F16>, ()> {
-    use sightline::scalar::Scalar;
-    use sightline::scene::{CameraSpec, vec3};
-    use sightline::transform::Euler;
-    let CameraSpec::Angles {
-        position,
-        angles: [a, b, c],
-    } = scene.camera
-    else {
-        return Err(());
-    };
-    let angles = Euler::new(
-        I16F16::from_f32(a),
-        I16F16::from_f32(b),
-        I16F16::from_f32(c),
-    );
-    let camera = Camera::from_angles(vec3(position), angles);
-    Renderer::with_camera(scene, camera, WIDTH, HEIGHT).map_err(|_| ())
-}
-
-#[cfg(any(feature = "scene-texture", feature = "scene-all"))]
-fn renderer(scene: &Scene<'_>) -> Result<Renderer<I16F16>, ()> {
-    Renderer::new(scene, WIDTH, HEIGHT).map_err(|_| ())
 }
 
 fn hash_pixels(h: &mut u64, px: &[Color]) {

@@ -31,7 +31,7 @@ mod grid;
 #[cfg(feature = "grid")]
 pub use grid::{RayBuffers, RayStorage, RayTriangle};
 
-use super::material::{self, Lighting};
+use super::material::{self, PreparedLight};
 #[cfg(feature = "sphere")]
 use super::vec3;
 use super::{Color, MAX_RAY_OBJECTS, Material, Scene, SceneError, View};
@@ -89,7 +89,7 @@ pub struct RayScene<'a, S> {
     objects: heapless::Vec<RayObject<S>, MAX_RAY_OBJECTS>,
     #[cfg(feature = "sphere")]
     spheres: heapless::Vec<Sphere<S>, MAX_RAY_OBJECTS>,
-    light: Lighting<S>,
+    light: PreparedLight<S>,
     /// One entry per object after [`Self::with_grid`], none after
     /// [`Self::new`].
     #[cfg(feature = "grid")]
@@ -187,7 +187,7 @@ impl<'a, S: Scalar> RayScene<'a, S> {
             objects,
             #[cfg(feature = "sphere")]
             spheres,
-            light: Lighting::new(&scene.light),
+            light: PreparedLight::new(&scene.light),
             #[cfg(feature = "grid")]
             grids: heapless::Vec::new(),
         })

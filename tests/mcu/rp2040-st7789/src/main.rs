@@ -2,7 +2,9 @@
 //!
 //! Renders the built-in Gouraud-lit bunny ([`sightline::scene::builtin::BUNNY`])
 //! in I16F16 fixed point (the RP2040's Cortex-M0+ has no FPU), turning it a
-//! little every frame. The frame is drawn in strips of [`BAND_ROWS`] rows:
+//! little every frame. The scene is prepared on the host by build.rs
+//! (`sightline::scene::export`) into const data in flash, so the firmware
+//! does no floating point. The frame is drawn in strips of [`BAND_ROWS`] rows:
 //! each strip is rendered into a small color band and a matching depth
 //! band, then pushed to the display's window for those rows. RAM for the
 //! picture is 240·16·(2 + 2) bytes = 15 KiB instead of 225 KiB for a whole
@@ -23,12 +25,16 @@ use mipidsi::interface::SpiInterface;
 use mipidsi::models::ST7789;
 use mipidsi::options::ColorInversion;
 use rp2040_hal::{self as hal, Clock, fugit::RateExtU32, pac};
-use sightline::math::Vec3;
 use sightline::pipeline::MeshVertex;
 use sightline::raster::DepthBuffer;
 use sightline::scalar::{I16F16, Scalar};
-use sightline::scene::{Color, PreparedObject, Renderer, Storage, builtin};
+use sightline::scene::Color;
 use sightline::target::Band;
+
+/// The built-in bunny prepared for this display (build.rs).
+mod bunny {
+    include!(concat!(env!("OUT_DIR"), "/bunny.rs"));
+}
 
 /// The second-stage bootloader for the W25Q080 flash of the Pico (and
 /// most RP2040 boards); it goes in the `.boot2` section (`memory.x`).
@@ -43,6 +49,9 @@ const SIDE: u16 = 240;
 /// Rows per strip.
 const BAND_ROWS: u16 = 16;
 const BAND_PIXELS: usize = SIDE as usize * BAND_ROWS as usize;
+const _: () = assert!(bunny::WIDTH == SIDE && bunny::HEIGHT == SIDE);
+/// 1/64 of a turn, 2π/64 rad, in 16.16 (0.098175 · 65536 = 6433.98).
+const STEP: I16F16 = I16F16::from_bits(6434);
 
 /// On a panic, stop: a board without a debugger shows the last frame.
 #[panic_handler]
@@ -101,23 +110,19 @@ fn main() -> ! {
 
     let mut color = [Color::new(0, 0, 0); BAND_PIXELS];
     let mut depth = [0u16; BAND_PIXELS];
-    // Prepared once: positions and normals in I16F16, then the renderer
-    // (camera, projection, clip volume, light).
-    let scene = &builtin::BUNNY;
-    const NEED: Storage = builtin::BUNNY.storage();
-    let mut vec3s = [Vec3::<I16F16>::ZERO; NEED.vec3s];
-    let mut objects = [PreparedObject::EMPTY; NEED.objects];
-    let objects = scene.prepare(&mut vec3s, &mut objects).unwrap();
-    let renderer = Renderer::<I16F16>::new(scene, SIDE, SIDE).unwrap();
-    let mut scratch = [MeshVertex::default(); NEED.vertices];
+    // Prepared on the host by build.rs: the objects borrow positions and
+    // normals in flash; the renderer holds camera, projection, clip volume
+    // and light.
+    let mut objects = bunny::objects().unwrap();
+    let renderer = bunny::renderer().unwrap();
+    let mut scratch = [MeshVertex::default(); bunny::VERTICES];
     let yaw0 = objects[1].pose.angles.yaw;
-    let step = I16F16::from_f32(core::f32::consts::TAU / 64.0);
     let mut frame: i32 = 0;
     loop {
         // Turn the bunny 1/64 of a turn per frame: each vertex is
         // transformed and projected once per frame, then drawn per strip.
-        objects[1].pose.angles.yaw = yaw0 + step * I16F16::from_i32(frame % 64);
-        let Ok(projected) = renderer.project(objects, &mut scratch) else {
+        objects[1].pose.angles.yaw = yaw0 + STEP * I16F16::from_i32(frame % 64);
+        let Ok(projected) = renderer.project(&mut objects, &mut scratch) else {
             continue;
         };
         for y0 in (0..SIDE).step_by(BAND_ROWS as usize) {

@@ -95,13 +95,19 @@ impl<S: Scalar> Pipeline<S> {
         // screen: it is then either drawn as it is (the scan converter
         // scissors it) or sent to the clipper, which keeps it whole; the
         // visible pixels are the same.
-        let planes = self.frustum.planes();
-        let depth_planes = planes.len().saturating_sub(4);
-        let mut outcode = 0u8;
-        for (i, plane) in planes.iter().take(depth_planes).enumerate() {
-            if plane.distance(v.pos) < S::ZERO {
-                outcode |= 1 << i;
-            }
+        //
+        // The depth planes are `z − near ≥ 0` and `far − z ≥ 0` (see
+        // `Pipeline::new`): their distance `0·x + 0·y + 1·z + d` is negative
+        // exactly when `z < near` (or `z > far`), in fixed point (the zero
+        // and unit products are exact and a saturated sum keeps its sign)
+        // and in floats (`a − b` rounds to zero only when `a = b`), so the
+        // compare gives the same outcode as the dot product, without its
+        // three multiplies.
+        let depth_planes = self.frustum.planes().len().saturating_sub(4);
+        let mut outcode = u8::from(v.pos.z < self.near);
+        #[cfg(feature = "clip-far")]
+        if depth_planes == 2 && v.pos.z > self.far_plane.d {
+            outcode |= 2;
         }
         if outcode != 0 {
             return MeshVertex {

@@ -1178,3 +1178,56 @@ fn shoelace_front_matches_i128() {
         assert_eq!(mesh::shoelace_front(&poly, last), oracle(&poly), "{poly:?}");
     }
 }
+
+/// `project_vertex` tests the depth planes by comparing z with near (and
+/// far): the outcode bits equal the sign of the planes' dot-product
+/// distance, for points on, within rounding of, and far from the planes.
+fn depth_outcodes_equal_plane_distances<S: Scalar>() {
+    let near = 0.37;
+    let far = 91.5;
+    let base = Pipeline::<S>::new(
+        Projection::perspective(S::from_i32(200), 320, 240),
+        320,
+        240,
+        S::from_f64(near),
+        S::from_f64(far),
+        S::from_i32(16),
+    )
+    .unwrap();
+    #[cfg(feature = "clip-far")]
+    let pipes = [base, base.with_far_clip(true)];
+    #[cfg(not(feature = "clip-far"))]
+    let pipes = [base];
+    let mut rng = crate::test_util::Rng::new(77);
+    let eps = S::EPSILON.to_f64();
+    let mut checked = [0u32; 2];
+    for pipe in &pipes {
+        let planes = pipe.frustum().planes();
+        let depth_planes = planes.len() - 4;
+        for i in 0..4000 {
+            let z = match i % 6 {
+                0 => near,
+                1 => far,
+                2 => near + eps * rng.range(-4.0, 4.0).round(),
+                3 => far + eps * rng.range(-4.0, 4.0).round(),
+                4 => rng.range(-40000.0, 40000.0),
+                _ => rng.range(-1.0, 120.0),
+            };
+            let p = v3::<S>(rng.range(-3e4, 3e4), rng.range(-3e4, 3e4), z);
+            let o = pipe.project_vertex::<(), 0>(&Vertex::new(p, ())).outcode;
+            for (k, plane) in planes.iter().take(depth_planes).enumerate() {
+                let outside = plane.distance(p) < S::ZERO;
+                assert_eq!(o & (1 << k) != 0, outside, "{} plane {k} at {p:?}", S::NAME);
+                checked[usize::from(outside)] += 1;
+            }
+        }
+    }
+    assert!(checked[0] > 500 && checked[1] > 500, "{checked:?}");
+}
+
+#[test]
+fn depth_outcodes_equal_plane_distances_every_scalar() {
+    depth_outcodes_equal_plane_distances::<f32>();
+    depth_outcodes_equal_plane_distances::<f64>();
+    depth_outcodes_equal_plane_distances::<I16F16>();
+}

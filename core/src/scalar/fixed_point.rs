@@ -316,8 +316,41 @@ impl<Frac: LeEqU32> Mul for Fx<Frac> {
     type Output = Self;
     #[inline]
     fn mul(self, rhs: Self) -> Self {
+        // On ARMv6-M, 16.16 operands below 128 in magnitude (positions,
+        // rotations and normals in view of a small screen: nearly every
+        // product of a frame) take three 32-bit multiplies and no 64-bit
+        // arithmetic; the result is the same (`mul16_small`).
+        #[cfg(all(target_arch = "arm", not(target_has_atomic = "ptr")))]
+        if Self::FRAC == 16 {
+            if let Some(bits) = mul16_small(self.bits, rhs.bits) {
+                return Self::from_bits(bits);
+            }
+        }
         Self::sat(Self::mul_wide(self.bits, rhs.bits))
     }
+}
+
+/// The rounded 16.16 product `(a·b + 2¹⁵) >> 16` (what `mul_wide` gives
+/// for 16 fraction bits) when `a` and `b` lie in `[−2²³, 2²³)`, in 32-bit
+/// arithmetic; `None` otherwise.
+///
+/// With `a = aₕ·2¹⁶ + aₗ` (aₗ unsigned) and the same for `b`,
+/// `a·b = (a·bₕ + aₕ·bₗ)·2¹⁶ + aₗ·bₗ`, so the floor of `(a·b + 2¹⁵)/2¹⁶`
+/// is `a·bₕ + aₕ·bₗ + ⌊(aₗ·bₗ + 2¹⁵)/2¹⁶⌋` exactly. Here `|aₕ|, |bₕ| ≤ 2⁷`:
+/// `|a·bₕ| ≤ 2³⁰`, `|aₕ·bₗ| < 2²³`, and `aₗ·bₗ + 2¹⁵ < 2³²`, so no step
+/// overflows and the result (at most 2³⁰ + 2²⁴ in magnitude) needs no
+/// saturation.
+#[inline(always)]
+#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
+pub(crate) fn mul16_small(a: i32, b: i32) -> Option<i32> {
+    const LIM: u32 = 1 << 23;
+    if (a as u32).wrapping_add(LIM) >= 2 * LIM || (b as u32).wrapping_add(LIM) >= 2 * LIM {
+        return None;
+    }
+    let (al, ah) = ((a & 0xffff) as u32, a >> 16);
+    let (bl, bh) = ((b & 0xffff) as u32, b >> 16);
+    let low = ((al * bl + (1 << 15)) >> 16) as i32;
+    Some(a * bh + ah * bl as i32 + low)
 }
 impl<Frac: LeEqU32> Div for Fx<Frac> {
     type Output = Self;
@@ -564,6 +597,13 @@ impl<Frac: LeEqU32 + 'static> Scalar for Fx<Frac> {
         self.bits.checked_sub(rhs.bits).map(Self::from_bits)
     }
     fn checked_mul(self, rhs: Self) -> Option<Self> {
+        // See `Mul`: small 16.16 operands on ARMv6-M, the same result.
+        #[cfg(all(target_arch = "arm", not(target_has_atomic = "ptr")))]
+        if Self::FRAC == 16 {
+            if let Some(bits) = mul16_small(self.bits, rhs.bits) {
+                return Some(Self::from_bits(bits));
+            }
+        }
         Self::fits(Self::mul_wide(self.bits, rhs.bits))
     }
     fn checked_div(self, rhs: Self) -> Option<Self> {

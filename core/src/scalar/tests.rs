@@ -540,3 +540,46 @@ fn quotients_equal_checked_div_every_format() {
     quotients_equal_checked_div::<I20F12>(I20F12::from_bits);
     quotients_equal_checked_div::<I2F30>(I2F30::from_bits);
 }
+
+/// The 32-bit 16.16 product equals the 64-bit one (`mul_wide`, then the
+/// range check) wherever it answers, and answers exactly when both
+/// operands lie in [−2^23, 2^23): at and around every power of two
+/// up to the limit, at the limit itself, and on a random sweep.
+#[test]
+fn mul16_small_equals_the_wide_product() {
+    use super::fixed_point::mul16_small;
+    let reference = |a: i32, b: i32| ((a as i64 * b as i64 + (1 << 15)) >> 16) as i32;
+    let lim = 1i32 << 23;
+    let mut edge = std::vec![0, 1, -1, lim - 1, -(lim - 1), -lim, lim, i32::MAX, i32::MIN];
+    for k in 0..23 {
+        for d in [-1, 0, 1] {
+            edge.push((1 << k) + d);
+            edge.push(-(1 << k) + d);
+        }
+    }
+    edge.extend([
+        0xffff, 0x10000, 0x7fff, 0x8000, 0x1_8000, -0x8000, -0x1_8000,
+    ]);
+    let check = |a: i32, b: i32| {
+        let small = (-(1 << 23)..1 << 23).contains(&a) && (-(1 << 23)..1 << 23).contains(&b);
+        match mul16_small(a, b) {
+            Some(r) => {
+                assert!(small, "{a}·{b} answered outside the limit");
+                assert_eq!(r, reference(a, b), "{a}·{b}");
+            }
+            None => assert!(!small, "{a}·{b} refused inside the limit"),
+        }
+    };
+    for &a in &edge {
+        for &b in &edge {
+            check(a, b);
+        }
+    }
+    let mut rng = crate::test_util::Rng::new(1616);
+    for _ in 0..1 << 18 {
+        let a = rng.range(-(lim as f64) * 1.01, lim as f64 * 1.01) as i32;
+        let b = rng.range(-(lim as f64) * 1.01, lim as f64 * 1.01) as i32;
+        check(a, b);
+        check(a >> 8, b);
+    }
+}

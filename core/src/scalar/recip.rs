@@ -46,15 +46,26 @@ pub(crate) fn recip62(d: u32) -> u64 {
     // e ≥ 0; x is within 2^−14 of the reciprocal, so e >> 22 < 2^32 and
     // the product fits u64.
     let two62 = 1u64 << 62;
-    let e = two62 - d as u64 * x;
-    x += (x * (e >> 22)) >> 40;
+    let e = two62 - mul_u32_u64(d, x);
+    x += mul_u32_u64((e >> 22) as u32, x) >> 40;
     // Now 2^62/d − x is a few units at most: step up to the ceiling,
     // branch-free (LLVM turns an early-exit loop into a 64-bit division).
-    let mut p = d as u64 * x;
+    let mut p = mul_u32_u64(d, x);
     for _ in 0..4 {
         let below = (p < two62) as u64;
         p += d as u64 & below.wrapping_neg();
         x += below;
     }
     x
+}
+
+/// `a·b` for a product known to fit `u64` (here `b` < 2^33), as one
+/// 32×32→64 multiply of `b`'s low half and a 32-bit multiply of its high
+/// half: four 16×16 multiplies and no `__aeabi_lmul` call on ARMv6-M (a
+/// full 64×64 multiply was three calls per reciprocal). Exact modulo 2^64,
+/// hence exact when the product fits.
+#[inline(always)]
+fn mul_u32_u64(a: u32, b: u64) -> u64 {
+    let (lo, hi) = (b as u32, (b >> 32) as u32);
+    super::fixed_point::widening_mul_u32(a, lo).wrapping_add((a.wrapping_mul(hi) as u64) << 32)
 }

@@ -1,23 +1,20 @@
 //! Writes the built-in scenes, prepared on this host, as Rust source with
-//! `sightline::scene::export` (the same generator the size/RAM firmware's
-//! build.rs uses), so `tests/tests/prepared_export.rs` can compile them and
+//! `sightline::scene::export::write_scene` (as the size/RAM firmware's
+//! build.rs does), so `tests/tests/prepared_export.rs` can compile them and
 //! compare them with preparation at run time.
 use sightline::math::Vec3;
 use sightline::scalar::I16F16;
-use sightline::scene::export::{ScalarLiteral, write_prepared};
-use sightline::scene::{PreparedObject, Renderer, Scene, builtin};
+use sightline::scene::export::{ScalarLiteral, write_scene};
+use sightline::scene::{PreparedObject, Scene, builtin};
 use std::{env, fs, path::PathBuf};
 
 fn export<S: ScalarLiteral>(scene: &Scene<'static>, path: &str, file: &str) {
     let need = scene.storage();
     let mut vec3s = vec![Vec3::<S>::ZERO; need.vec3s];
     let mut objects = vec![PreparedObject::EMPTY; need.objects];
-    let objects = scene
-        .prepare(&mut vec3s, &mut objects)
-        .unwrap_or_else(|e| panic!("{path}: {e}"));
-    let renderer = Renderer::<S>::new(scene, 320, 240).unwrap_or_else(|e| panic!("{path}: {e}"));
     let mut code = String::new();
-    write_prepared(&mut code, path, objects, &renderer).expect("formatting into a String");
+    write_scene(&mut code, path, scene, 320, 240, &mut vec3s, &mut objects)
+        .unwrap_or_else(|e| panic!("{path}: {e}"));
     let out = PathBuf::from(env::var_os("OUT_DIR").expect("OUT_DIR"));
     fs::write(out.join(file), code).unwrap_or_else(|e| panic!("{file}: {e}"));
 }

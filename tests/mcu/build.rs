@@ -5,8 +5,8 @@
 //! firmware does no f32 arithmetic, normalization or camera solving.
 use sightline::math::Vec3;
 use sightline::scalar::I16F16;
-use sightline::scene::export::write_prepared;
-use sightline::scene::{PreparedObject, Renderer, Scene, builtin};
+use sightline::scene::export::write_scene;
+use sightline::scene::{PreparedObject, Scene, builtin};
 use std::{env, fs, path::Path, path::PathBuf};
 
 /// The firmware's image size (`WIDTH`/`HEIGHT` in src/scene.rs).
@@ -17,14 +17,18 @@ fn export(out: &Path, scene: &Scene<'static>, name: &str) {
     let need = scene.storage();
     let mut vec3s = vec![Vec3::<I16F16>::ZERO; need.vec3s];
     let mut objects = vec![PreparedObject::EMPTY; need.objects];
-    let objects = scene
-        .prepare(&mut vec3s, &mut objects)
-        .unwrap_or_else(|e| panic!("preparing {name}: {e}"));
-    let renderer = Renderer::<I16F16>::new(scene, WIDTH, HEIGHT)
-        .unwrap_or_else(|e| panic!("the renderer of {name}: {e}"));
     let mut code = String::new();
     let path = format!("::sightline::scene::builtin::{name}");
-    write_prepared(&mut code, &path, objects, &renderer).expect("formatting into a String");
+    write_scene(
+        &mut code,
+        &path,
+        scene,
+        WIDTH,
+        HEIGHT,
+        &mut vec3s,
+        &mut objects,
+    )
+    .unwrap_or_else(|e| panic!("{name}: {e}"));
     let file = out.join(format!("{}.rs", name.to_lowercase()));
     fs::write(&file, code).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
 }

@@ -11,10 +11,8 @@
 //! let scene = &sightline::scene::builtin::CUBE;
 //! let mut vec3s = vec![Vec3::<I16F16>::ZERO; scene.storage().vec3s];
 //! let mut objects = vec![PreparedObject::EMPTY; scene.storage().objects];
-//! let objects = scene.prepare(&mut vec3s, &mut objects)?;
-//! let renderer = Renderer::<I16F16>::new(scene, 320, 240)?;
 //! let mut code = String::new();
-//! write_prepared(&mut code, "::sightline::scene::builtin::CUBE", objects, &renderer)?;
+//! write_scene(&mut code, "::sightline::scene::builtin::CUBE", scene, 320, 240, &mut vec3s, &mut objects)?;
 //! std::fs::write(out_dir.join("cube.rs"), code)?;
 //!
 //! // firmware
@@ -43,7 +41,7 @@
 //!   world→view transform, [`Camera::from_world_to_view`]), projection,
 //!   depth range, light and background, and far clipping if it was on.
 
-use super::{PreparedObject, Renderer};
+use super::{PreparedObject, Renderer, Scene, SceneError};
 #[cfg(doc)]
 use crate::camera::Camera;
 use crate::camera::ProjectionKind;
@@ -148,10 +146,56 @@ fn vec3s<S: ScalarLiteral>(
     out.write_str("\n];\n")
 }
 
+/// Why [`write_scene`] wrote nothing usable.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum ExportError {
+    /// The scene could not be prepared or its renderer built (the
+    /// storage is too short, a number is not finite, a camera is
+    /// degenerate, …).
+    Scene(SceneError),
+    /// The writer failed.
+    Write,
+}
+
+impl fmt::Display for ExportError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Scene(e) => write!(f, "preparing the scene: {e}"),
+            Self::Write => f.write_str("the writer failed"),
+        }
+    }
+}
+
+impl core::error::Error for ExportError {}
+
+/// Prepares `scene` into `vec3s` and `objects` (at least as long as
+/// [`Scene::storage`] says), builds its renderer for a `width`×`height`
+/// image ([`Renderer::new`]) and writes both with [`write_prepared`]: the
+/// whole of a firmware's `build.rs` step.
+///
+/// # Errors
+/// [`ExportError::Scene`] from [`Scene::prepare`] or [`Renderer::new`];
+/// [`ExportError::Write`]. On [`ExportError::Scene`] nothing has been
+/// written; what a failing writer took is not a usable module.
+pub fn write_scene<'s, S: ScalarLiteral>(
+    out: &mut dyn Write,
+    scene_path: &str,
+    scene: &'s Scene<'s>,
+    width: u16,
+    height: u16,
+    vec3s: &'s mut [Vec3<S>],
+    objects: &'s mut [PreparedObject<'s, S>],
+) -> Result<(), ExportError> {
+    let renderer = Renderer::<S>::new(scene, width, height).map_err(ExportError::Scene)?;
+    let objects = scene.prepare(vec3s, objects).map_err(ExportError::Scene)?;
+    write_prepared(out, scene_path, objects, &renderer).map_err(|_| ExportError::Write)
+}
+
 /// Writes `objects` and `renderer` as a Rust module body (see the module
-/// docs): `objects` as [`Scene::prepare`](super::Scene::prepare) returned
+/// docs): `objects` as [`Scene::prepare`] returned
 /// them for the scene that the Rust path `scene_path` names (a `static`
-/// or `const` [`Scene`](super::Scene), for example
+/// or `const` [`Scene`], for example
 /// `"::sightline::scene::builtin::CUBE"`), with any poses or culling you
 /// changed since; `renderer` built for that scene.
 ///
@@ -341,4 +385,48 @@ pub fn write_prepared<S: ScalarLiteral>(
         out.write_str("\n        .map(|r| r.with_far_clip(true))")?;
     }
     out.write_str("\n}\n")
+}
+
+#[cfg(all(test, feature = "demo"))]
+mod tests {
+    use super::*;
+    use crate::scalar::I16F16;
+    use crate::scene::builtin::CUBE;
+    use std::string::String;
+    use std::vec;
+
+    /// Too little storage or a bad scene is refused before anything is
+    /// written; a good one writes the module (whose values
+    /// `tests/tests/prepared_export.rs` compiles and checks).
+    #[test]
+    fn write_scene_refuses_before_writing() {
+        let need = CUBE.storage();
+        let storage = |v: usize| {
+            (
+                vec![Vec3::<I16F16>::ZERO; v],
+                vec![PreparedObject::EMPTY; need.objects],
+            )
+        };
+        let mut code = String::new();
+        let (mut vec3s, mut objects) = storage(need.vec3s - 1);
+        let r = write_scene(&mut code, "CUBE", &CUBE, 320, 240, &mut vec3s, &mut objects);
+        assert_eq!(r, Err(ExportError::Scene(SceneError::Storage)));
+        assert!(code.is_empty());
+
+        let mut bad = CUBE;
+        bad.near = f32::NAN;
+        let (mut vec3s, mut objects) = storage(need.vec3s);
+        let r = write_scene(&mut code, "CUBE", &bad, 320, 240, &mut vec3s, &mut objects);
+        assert!(
+            matches!(r, Err(ExportError::Scene(SceneError::NonFinite { .. }))),
+            "{r:?}"
+        );
+        assert!(code.is_empty());
+
+        let (mut vec3s, mut objects) = storage(need.vec3s);
+        let r = write_scene(&mut code, "CUBE", &CUBE, 320, 240, &mut vec3s, &mut objects);
+        assert_eq!(r, Ok(()));
+        assert!(code.contains("pub const VERTICES: usize = 12;"), "{code}");
+        assert!(code.contains("pub fn renderer()"));
+    }
 }

@@ -5,8 +5,8 @@
 //! and the prepared positions and normals sit in flash, not RAM.
 use sightline::math::Vec3;
 use sightline::scalar::I16F16;
-use sightline::scene::export::write_prepared;
-use sightline::scene::{PreparedObject, Renderer, builtin};
+use sightline::scene::export::write_scene;
+use sightline::scene::{PreparedObject, builtin};
 use std::{env, fs, path::PathBuf};
 
 /// Display side in pixels (`SIDE` in src/main.rs checks it).
@@ -20,19 +20,10 @@ fn main() {
     let need = scene.storage();
     let mut vec3s = vec![Vec3::<I16F16>::ZERO; need.vec3s];
     let mut objects = vec![PreparedObject::EMPTY; need.objects];
-    let objects = scene
-        .prepare(&mut vec3s, &mut objects)
-        .unwrap_or_else(|e| panic!("preparing the bunny: {e}"));
-    let renderer = Renderer::<I16F16>::new(scene, SIDE, SIDE)
-        .unwrap_or_else(|e| panic!("the bunny's renderer: {e}"));
     let mut code = String::new();
-    write_prepared(
-        &mut code,
-        "::sightline::scene::builtin::BUNNY",
-        objects,
-        &renderer,
-    )
-    .expect("formatting into a String");
+    let path = "::sightline::scene::builtin::BUNNY";
+    write_scene(&mut code, path, scene, SIDE, SIDE, &mut vec3s, &mut objects)
+        .unwrap_or_else(|e| panic!("the bunny: {e}"));
     fs::write(out.join("bunny.rs"), code).expect("write bunny.rs");
 
     println!("cargo:rustc-link-search={}", out.display());

@@ -66,6 +66,9 @@ macro_rules! vec_common {
             /// Dot product.
             #[must_use]
             pub fn dot(self, rhs: Self) -> S {
+                if let Some(v) = S::dot_fast([$(self.$f),+], [$(rhs.$f),+]) {
+                    return v;
+                }
                 let mut acc = S::ZERO;
                 $(acc += self.$f * rhs.$f;)+
                 acc

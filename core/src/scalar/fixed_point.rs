@@ -344,13 +344,40 @@ impl<Frac: LeEqU32> Mul for Fx<Frac> {
 #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
 pub(crate) fn mul16_small(a: i32, b: i32) -> Option<i32> {
     const LIM: u32 = 1 << 23;
-    if (a as u32).wrapping_add(LIM) >= 2 * LIM || (b as u32).wrapping_add(LIM) >= 2 * LIM {
+    if ((a as u32).wrapping_add(LIM) | (b as u32).wrapping_add(LIM)) >= 2 * LIM {
         return None;
     }
+    Some(mul16_in_range(a, b))
+}
+
+/// `a·b` of three 16.16 raw-bit pairs as the plain dot product computes it
+/// (each product rounded, summed left to right from zero with
+/// saturation) when every operand lies in `[−2²³, 2²³)`, with one range
+/// test for all six (the biased operands are all below 2²⁴ exactly when
+/// their OR is) and [`mul16_small`]'s products; `None` otherwise.
+#[inline(always)]
+#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
+pub(crate) fn dot16_small3(a: [i32; 3], b: [i32; 3]) -> Option<i32> {
+    const LIM: u32 = 1 << 23;
+    let bias = |v: i32| (v as u32).wrapping_add(LIM);
+    let any = bias(a[0]) | bias(a[1]) | bias(a[2]) | bias(b[0]) | bias(b[1]) | bias(b[2]);
+    if any >= 2 * LIM {
+        return None;
+    }
+    let p0 = mul16_in_range(a[0], b[0]);
+    let p1 = mul16_in_range(a[1], b[1]);
+    let p2 = mul16_in_range(a[2], b[2]);
+    Some(p0.saturating_add(p1).saturating_add(p2))
+}
+
+/// [`mul16_small`] without the range test: `a` and `b` in `[−2²³, 2²³)`.
+#[inline(always)]
+#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
+fn mul16_in_range(a: i32, b: i32) -> i32 {
     let (al, ah) = ((a & 0xffff) as u32, a >> 16);
     let (bl, bh) = ((b & 0xffff) as u32, b >> 16);
     let low = ((al * bl + (1 << 15)) >> 16) as i32;
-    Some(a * bh + ah * bl as i32 + low)
+    a * bh + ah * bl as i32 + low
 }
 impl<Frac: LeEqU32> Div for Fx<Frac> {
     type Output = Self;
@@ -595,6 +622,19 @@ impl<Frac: LeEqU32 + 'static> Scalar for Fx<Frac> {
     }
     fn checked_sub(self, rhs: Self) -> Option<Self> {
         self.bits.checked_sub(rhs.bits).map(Self::from_bits)
+    }
+    #[inline]
+    fn dot_fast<const N: usize>(a: [Self; N], b: [Self; N]) -> Option<Self> {
+        // On ARMv6-M, a 16.16 dot product of three whose operands all lie
+        // in [−2^23, 2^23) takes `dot16_small3`: the same value as the
+        // plain sum, with one range test and no 64-bit arithmetic.
+        #[cfg(all(target_arch = "arm", not(target_has_atomic = "ptr")))]
+        if Self::FRAC == 16 && N == 3 {
+            let bits = |v: [Self; N]| [v[0].bits, v[1].bits, v[2].bits];
+            return dot16_small3(bits(a), bits(b)).map(Self::from_bits);
+        }
+        let _ = (a, b);
+        None
     }
     fn checked_mul(self, rhs: Self) -> Option<Self> {
         // See `Mul`: small 16.16 operands on ARMv6-M, the same result.

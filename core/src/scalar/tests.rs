@@ -583,3 +583,60 @@ fn mul16_small_equals_the_wide_product() {
         check(a >> 8, b);
     }
 }
+
+/// The one-test 16.16 dot product equals the generic one (rounded
+/// products, saturating sum from zero, left to right) wherever it answers,
+/// and answers exactly when every operand lies in [−2^23, 2^23): operands
+/// at the limits, sums that saturate either way, and a random sweep.
+#[test]
+fn dot16_small_equals_the_generic_dot() {
+    use super::fixed_point::dot16_small3 as dot16_small;
+    let generic = |a: [i32; 3], b: [i32; 3]| {
+        let mut acc = I16F16::ZERO;
+        for i in 0..3 {
+            acc += I16F16::from_bits(a[i]) * I16F16::from_bits(b[i]);
+        }
+        acc.to_bits()
+    };
+    let lim = 1i32 << 23;
+    let inside = |v: &[i32; 3]| v.iter().all(|x| (-lim..lim).contains(x));
+    let check = |a: [i32; 3], b: [i32; 3]| match dot16_small(a, b) {
+        Some(r) => {
+            assert!(
+                inside(&a) && inside(&b),
+                "{a:?}·{b:?} answered outside the limit"
+            );
+            assert_eq!(r, generic(a, b), "{a:?}·{b:?}");
+        }
+        None => assert!(
+            !(inside(&a) && inside(&b)),
+            "{a:?}·{b:?} refused inside the limit"
+        ),
+    };
+    let big = lim - 1;
+    // Saturates upwards, downwards, and up then back down (order matters).
+    check([big, big, big], [big, big, big]);
+    check([-lim, -lim, -lim], [big, big, big]);
+    check([big, big, -lim], [big, big, big]);
+    // The only first sum that overflows: two products of exactly 2^30.
+    check([-lim, -lim, 0], [-lim, -lim, 0]);
+    check([-lim, -lim, -lim], [-lim, -lim, lim - 1]);
+    check([lim, 0, 0], [1, 0, 0]);
+    check([0, 0, 0], [0, -lim - 1, 0]);
+    let mut rng = crate::test_util::Rng::new(1617);
+    for _ in 0..1 << 17 {
+        let r = |rng: &mut crate::test_util::Rng, m: f64| rng.range(-m, m) as i32;
+        let m = if rng.range(0.0, 1.0) < 0.5 {
+            lim as f64 * 1.001
+        } else {
+            65536.0 * 4.0
+        };
+        let a = [r(&mut rng, m), r(&mut rng, m), r(&mut rng, m)];
+        let b = [r(&mut rng, m), r(&mut rng, m), r(&mut rng, m)];
+        check(a, b);
+    }
+    assert_eq!(
+        dot16_small([3 << 16, 1 << 15, 0], [1 << 16, 1 << 16, 5]),
+        Some(7 << 15)
+    );
+}

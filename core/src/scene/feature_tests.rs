@@ -340,4 +340,15 @@ fn renderer_from_prepared_parts_draws_the_same() {
         Err(SceneError::NonFinite { what: "light" })
     );
     assert!(PreparedLight::<I16F16>::from_light(&CUBE.light).unwrap() == a.light());
+    // A float light from parts is checked by the renderer.
+    let f = Renderer::<f32>::new(&CUBE, w, h).unwrap();
+    let (near, far) = f.depth_range();
+    let nan = PreparedLight::from_unit(Vec3::new(0.0, f32::NAN, 1.0), 0.2, 0.8);
+    assert!(!nan.is_finite() && f.light().is_finite());
+    assert!(matches!(
+        Renderer::from_prepared(*f.view(), near, far, nan, f.background()),
+        Err(SceneError::NonFinite { what: "light" })
+    ));
+    let inf = PreparedLight::from_unit(Vec3::new(0.0, 0.0, 1.0), f32::INFINITY, 0.8);
+    assert!(Renderer::from_prepared(*f.view(), near, far, inf, f.background()).is_err());
 }

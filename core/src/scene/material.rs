@@ -78,6 +78,12 @@ impl<S: Scalar> PreparedLight<S> {
         }
     }
 
+    /// Whether every part is finite (always, in fixed point).
+    #[must_use]
+    pub fn is_finite(&self) -> bool {
+        self.dir.is_finite() && self.ambient.is_finite() && self.diffuse.is_finite()
+    }
+
     /// The direction towards the light.
     #[must_use]
     pub fn direction(&self) -> Vec3<S> {

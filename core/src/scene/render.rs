@@ -178,7 +178,9 @@ impl<S: Scalar> Renderer<S> {
     /// arithmetic.
     ///
     /// # Errors
-    /// [`SceneError::Pipeline`] for a bad depth range or projection.
+    /// [`SceneError::NonFinite`] for a light with a NaN or infinite part
+    /// (floats only), [`SceneError::Pipeline`] for a bad depth range or
+    /// projection.
     pub fn from_prepared(
         view: View<S>,
         near: S,
@@ -186,6 +188,9 @@ impl<S: Scalar> Renderer<S> {
         light: PreparedLight<S>,
         background: Color,
     ) -> Result<Self, SceneError> {
+        if !light.is_finite() {
+            return Err(SceneError::NonFinite { what: "light" });
+        }
         let pipeline = Pipeline::new(
             view.projection,
             view.width,
@@ -251,8 +256,8 @@ impl<S: Scalar> Renderer<S> {
         (self.near, self.far)
     }
 
-    /// Whether it clips at the far plane (only ever with `clip-far`, see
-    /// [`with_far_clip`](Self::with_far_clip)).
+    /// Whether it clips at the far plane (only ever with feature
+    /// `clip-far`, when asked with `with_far_clip`).
     #[must_use]
     pub fn clips_far(&self) -> bool {
         self.pipeline.clips_far()

@@ -2,7 +2,7 @@
 //! a firmware holds it as `const` data in flash and does no `f32`
 //! arithmetic, no normalization and no camera solving at run time.
 //!
-//! Run [`write_prepared`] on the host, typically in the firmware's
+//! Run [`write_scene`] on the host, typically in the firmware's
 //! `build.rs` (with `sightline` as a build dependency that has `export`),
 //! and `include!` the file it writes into a module of its own:
 //!

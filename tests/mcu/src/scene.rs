@@ -51,7 +51,7 @@ compile_error!("select one scene-* feature only (build with --no-default-feature
 /// The flat, Gouraud and textured firmwares draw one scene each, prepared
 /// on the host by build.rs (`sightline::scene::export`) into const I16F16
 /// data: no f32 arithmetic, normalization or camera solving runs here
-/// (`tests/mcu/run` checks that they link no solver and no soft float).
+/// (`tests/mcu/run` checks that they link no solver and no floating point).
 #[cfg(feature = "scene-flat")]
 mod prepared {
     include!(concat!(env!("OUT_DIR"), "/cube.rs"));

@@ -41,7 +41,7 @@
 //!   world→view transform, [`Camera::from_world_to_view`]), projection,
 //!   depth range, light and background, and far clipping if it was on.
 
-use super::{PreparedObject, Renderer, Scene, SceneError};
+use super::{PreparedObject, Renderer, Scene, SceneError, triangle_hash};
 #[cfg(doc)]
 use crate::camera::Camera;
 use crate::camera::ProjectionKind;
@@ -93,22 +93,6 @@ impl ScalarLiteral for f64 {
     fn write_bits(self, out: &mut dyn Write) -> fmt::Result {
         write!(out, "{:#x}", self.to_bits())
     }
-}
-
-/// FNV-1a over the vertex indices, little-endian: the generated code
-/// recomputes it at compile time over the triangles it reads from the
-/// scene.
-fn triangle_hash(triangles: &[[u16; 3]]) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for t in triangles {
-        for k in t {
-            for b in k.to_le_bytes() {
-                h ^= u64::from(b);
-                h = h.wrapping_mul(0x0000_0100_0000_01b3);
-            }
-        }
-    }
-    h
 }
 
 fn s<S: ScalarLiteral>(out: &mut dyn Write, x: S) -> fmt::Result {
@@ -236,16 +220,7 @@ pub fn write_prepared<S: ScalarLiteral>(
          pub const VERTICES: usize = {vertices};\n\
          const SCENE: &::sightline::scene::Scene<'static> = &{scene_path};\n\
          const _: () = assert!(SCENE.objects.len() == OBJECTS, \"the scene's object count differs from the prepared one\");\n\
-         /// FNV-1a over the vertex indices, little-endian.\n\
-         const fn triangle_hash(t: &[[u16; 3]]) -> u64 {{\n    \
-             let mut h: u64 = 0xcbf2_9ce4_8422_2325;\n    \
-             let mut i = 0;\n    \
-             while i < t.len() * 6 {{\n        \
-                 let b = (t[i / 6][i % 6 / 2] >> (8 * (i % 2))) as u8;\n        \
-                 h = (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3);\n        \
-                 i += 1;\n    \
-             }}\n    \
-             h\n}}\n",
+",
         objects.len(),
         view.width,
         view.height,
@@ -280,7 +255,7 @@ pub fn write_prepared<S: ScalarLiteral>(
             "const _: () = {{\n    \
                  let m = SCENE.objects[{k}].mesh;\n    \
                  assert!(m.positions.len() == {n} && m.triangles.len() == {t}, \"object {k}: the scene's mesh has other counts than the prepared one\");\n    \
-                 assert!(triangle_hash(m.triangles) == {h:#x}, \"object {k}: the scene's triangles differ from the prepared ones\");\n\
+                 assert!(::sightline::scene::triangle_hash(m.triangles) == {h:#x}, \"object {k}: the scene's triangles differ from the prepared ones\");\n\
              }};\n\
              const TRIANGLES_{k}: &[[u16; 3]] = SCENE.objects[{k}].mesh.triangles;\n\
              const UVS_{k}: &[[i16; 2]] = match SCENE.objects[{k}].mesh.uvs {{ Some(u) => u, None => &[] }};\n\

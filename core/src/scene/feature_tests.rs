@@ -352,3 +352,23 @@ fn renderer_from_prepared_parts_draws_the_same() {
     let inf = PreparedLight::from_unit(Vec3::new(0.0, 0.0, 1.0), f32::INFINITY, 0.8);
     assert!(Renderer::from_prepared(*f.view(), near, far, inf, f.background()).is_err());
 }
+
+/// `triangle_hash` is FNV-1a over the indices' little-endian bytes: the
+/// same as hashing the byte string, and it tells apart a swapped index.
+#[test]
+fn triangle_hash_is_fnv1a_of_the_index_bytes() {
+    let tris = CUBE.objects[1].mesh.triangles;
+    let bytes: std::vec::Vec<u8> = tris
+        .iter()
+        .flatten()
+        .flat_map(|k| k.to_le_bytes())
+        .collect();
+    let fnv = bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    });
+    assert_eq!(triangle_hash(tris), fnv);
+    assert_eq!(triangle_hash(&[]), 0xcbf2_9ce4_8422_2325);
+    let mut swapped = tris.to_vec();
+    swapped[0].swap(0, 1);
+    assert_ne!(triangle_hash(&swapped), fnv);
+}

@@ -109,7 +109,9 @@ pub use description::{
 };
 pub use error::SceneError;
 pub use material::{PreparedLight, quantize_intensity};
-pub use prepared::{MeshError, Normals, PreparedMesh, PreparedObject, Storage, storage_len};
+pub use prepared::{
+    MeshError, Normals, PreparedMesh, PreparedObject, Storage, storage_len, triangle_hash,
+};
 #[cfg(feature = "grid")]
 pub use ray::{RayBuffers, RayStorage, RayTriangle};
 #[cfg(feature = "raycast")]

@@ -43,7 +43,8 @@
 //!   (28.4, i.e. ±1024 pixels: any viewport up to 992 pixels wide with the
 //!   pipeline's 16-pixel guard band) walks its edges entirely in `i32`: the
 //!   edge numerator is then below 1.62·10^9 < 2^31 (derivation at
-//!   `EdgeStepper32` in `edge`). Larger coordinates take the `i64` walk.
+//!   `EdgeStepper32` in `edge`). Larger triangles, and every other
+//!   polygon, walk their left and right vertex chains with `i64` edges.
 //!   The choice is made per triangle from its coordinates and both walks
 //!   compute the same exact quotients, so it never changes a pixel.
 //!   Products of two 32-bit values (edge vectors, areas, gradient
@@ -360,12 +361,26 @@ where
     }
 
     let mut drawn = false;
-    if let [v0, v1, v2] = *verts {
-        // Triangles (most of a mesh): the long edge top→bottom against the
-        // short edges top→mid and mid→bottom, no chain walking. These are
-        // the edges the chains would take, set up with the same rows, and
-        // an edge's value on a row does not depend on where its walk
-        // started (see `edge`), so the spans are identical.
+    // Triangles (most of a mesh) whose coordinates allow 32-bit edges (see
+    // `EdgeStepper32`): the long edge top→bottom against the short edges
+    // top→mid and mid→bottom, no chain walking. These are the edges the
+    // chains would take, set up with the same rows, and an edge's value on
+    // a row does not depend on where its walk started (see `edge`), so the
+    // spans are identical. Everything else (polygons, and triangles beyond
+    // ±`SMALL_COORD_LIMIT`, which no viewport below 992 pixels produces)
+    // walks the chains with 64-bit edges: one copy of the span code less.
+    let lim = edge::SMALL_COORD_LIMIT;
+    let small_triangle = match *verts {
+        [a, b, c]
+            if [a, b, c]
+                .iter()
+                .all(|v| v.x.abs() <= lim && v.y.abs() <= lim) =>
+        {
+            Some([a, b, c])
+        }
+        _ => None,
+    };
+    if let Some([v0, v1, v2]) = small_triangle {
         let (mut t, mut m, mut b) = (v0, v1, v2);
         if m.y < t.y {
             core::mem::swap(&mut t, &mut m);
@@ -377,32 +392,16 @@ where
             core::mem::swap(&mut t, &mut m);
         }
         let split = first_center(m.y).clamp(row0, row1);
-        // One walk for both halves and both edge widths: 32-bit edges when
-        // every coordinate allows it (see `EdgeStepper32`), 64-bit ones
-        // otherwise; both give the same columns.
-        macro_rules! walk {
-            ($E:ident, $x:expr) => {{
-                let mut long = $E::new(t.x, t.y, b.x, b.y, row0);
-                for (lo, hi, p, q) in [(row0, split, t, m), (split, row1, m, b)] {
-                    if lo < hi {
-                        let mut short = $E::new(p.x, p.y, q.x, q.y, lo);
-                        for y in lo..hi {
-                            drawn |= span!(y, $x(long.x), $x(short.x));
-                            long.step();
-                            short.step();
-                        }
-                    }
+        let mut long = EdgeStepper32::new(t.x, t.y, b.x, b.y, row0);
+        for (lo, hi, p, q) in [(row0, split, t, m), (split, row1, m, b)] {
+            if lo < hi {
+                let mut short = EdgeStepper32::new(p.x, p.y, q.x, q.y, lo);
+                for y in lo..hi {
+                    drawn |= span!(y, long.x, short.x);
+                    long.step();
+                    short.step();
                 }
-            }};
-        }
-        let lim = edge::SMALL_COORD_LIMIT;
-        if [t, m, b]
-            .iter()
-            .all(|v| v.x.abs() <= lim && v.y.abs() <= lim)
-        {
-            walk!(EdgeStepper32, |x: i32| x);
-        } else {
-            walk!(EdgeStepper, |x: i64| x as i32);
+            }
         }
     } else {
         let mut a = Chain::new(verts, top, bottom, true);

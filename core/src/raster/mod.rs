@@ -251,34 +251,33 @@ where
 
     // The basis for the planes: the fan triangle of largest |area|. With
     // coordinates within ±2^28 each cross product is below 2^60.
-    let v0 = verts[0];
-    let mut basis = Basis {
-        p: [(v0.x, v0.y); 3],
-        area2: 0,
-    };
-    let mut bv = [v0; 3];
-    for w in verts[1..].windows(2) {
-        let (a, b) = (w[0], w[1]);
+    // (By index: copying the vertices at each better candidate cost about
+    // a hundred instructions per triangle on ARMv6-M.)
+    let v0 = &verts[0];
+    let (mut best, mut best_area) = (1, 0i64);
+    for (k, w) in verts[1..].windows(2).enumerate() {
+        let (a, b) = (&w[0], &w[1]);
         // Edge components below 2^29: each product is a 32×32→64 multiply.
         let (e1x, e1y) = (a.x - v0.x, a.y - v0.y);
         let (e2x, e2y) = (b.x - v0.x, b.y - v0.y);
         let area2 = crate::scalar::widening_mul(e1x, e2y) - crate::scalar::widening_mul(e1y, e2x);
-        if area2.unsigned_abs() > basis.area2.unsigned_abs() {
-            basis = Basis {
-                p: [(v0.x, v0.y), (a.x, a.y), (b.x, b.y)],
-                area2,
-            };
-            bv = [v0, a, b];
+        if area2.unsigned_abs() > best_area.unsigned_abs() {
+            (best, best_area) = (k + 1, area2);
         }
     }
-    if basis.area2 == 0 {
+    if best_area == 0 {
         // Every vertex is on one line through vertex 0: no interior.
         return FillOutcome::Empty;
     }
+    let bv = [v0, &verts[best], &verts[best + 1]];
+    let basis = Basis {
+        p: bv.map(|v| (v.x, v.y)),
+        area2: best_area,
+    };
     let solid = shader.solid();
     let zgrad = if Z::ENABLED {
         let z = |v: &ScreenVertex<VARYINGS>| (v.z as i64) << DEPTH_FRAC_BITS;
-        Gradient::new(&basis, [z(&bv[0]), z(&bv[1]), z(&bv[2])])
+        Gradient::new(&basis, [z(bv[0]), z(bv[1]), z(bv[2])])
     } else {
         Gradient::default()
     };
@@ -370,7 +369,7 @@ where
     // ±`SMALL_COORD_LIMIT`, which no viewport below 992 pixels produces)
     // walks the chains with 64-bit edges: one copy of the span code less.
     let lim = edge::SMALL_COORD_LIMIT;
-    let small_triangle = match *verts {
+    let small_triangle = match verts {
         [a, b, c]
             if [a, b, c]
                 .iter()
@@ -381,6 +380,8 @@ where
         _ => None,
     };
     if let Some([v0, v1, v2]) = small_triangle {
+        // Sorted by reference (swapping the vertices themselves moved
+        // their varyings too).
         let (mut t, mut m, mut b) = (v0, v1, v2);
         if m.y < t.y {
             core::mem::swap(&mut t, &mut m);

@@ -224,13 +224,9 @@ where
     if n < 3 {
         return FillOutcome::Empty;
     }
-    if verts
-        .iter()
-        .any(|v| v.x.unsigned_abs() > COORD_LIMIT as u32 || v.y.unsigned_abs() > COORD_LIMIT as u32)
-    {
-        return FillOutcome::Rejected;
-    }
-    let (mut top, mut bottom) = (0, 0);
+    // One pass: the top and bottom vertices, and the largest coordinate
+    // magnitude (for the range checks here and for the 32-bit walk).
+    let (mut top, mut bottom, mut reach) = (0, 0, 0u32);
     for (i, v) in verts.iter().enumerate() {
         if v.y < verts[top].y {
             top = i;
@@ -238,6 +234,10 @@ where
         if v.y > verts[bottom].y {
             bottom = i;
         }
+        reach = reach.max(v.x.unsigned_abs()).max(v.y.unsigned_abs());
+    }
+    if reach > COORD_LIMIT as u32 {
+        return FillOutcome::Rejected;
     }
     let mut clip = target.clip_rect();
     if let Some(r) = depth.clip_rect() {
@@ -368,15 +368,8 @@ where
     // spans are identical. Everything else (polygons, and triangles beyond
     // ±`SMALL_COORD_LIMIT`, which no viewport below 992 pixels produces)
     // walks the chains with 64-bit edges: one copy of the span code less.
-    let lim = edge::SMALL_COORD_LIMIT;
     let small_triangle = match verts {
-        [a, b, c]
-            if [a, b, c]
-                .iter()
-                .all(|v| v.x.abs() <= lim && v.y.abs() <= lim) =>
-        {
-            Some([a, b, c])
-        }
+        [a, b, c] if reach <= edge::SMALL_COORD_LIMIT as u32 => Some([a, b, c]),
         _ => None,
     };
     if let Some([v0, v1, v2]) = small_triangle {
@@ -394,7 +387,12 @@ where
         }
         let split = first_center(m.y).clamp(row0, row1);
         let mut long = EdgeStepper32::new(t.x, t.y, b.x, b.y, row0);
-        for (lo, hi, p, q) in [(row0, split, t, m), (split, row1, m, b)] {
+        for upper in [true, false] {
+            let (lo, hi, p, q) = if upper {
+                (row0, split, t, m)
+            } else {
+                (split, row1, m, b)
+            };
             if lo < hi {
                 let mut short = EdgeStepper32::new(p.x, p.y, q.x, q.y, lo);
                 for y in lo..hi {

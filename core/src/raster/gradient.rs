@@ -103,8 +103,6 @@ impl Gradient {
     /// `hi − lo` must be below 2^31 so that the step fits in i32.
     #[inline(always)]
     pub(super) fn span(&self, x: i32, y: i32, len: u32, lo: i32, hi: i32) -> (i32, i32) {
-        let px = (x as i64) * 16 + 8 - self.x0 as i64;
-        let py = (y as i64) * 16 + 8 - self.y0 as i64;
         let n = len.saturating_sub(1) as i64;
         // One pixel is 16 units of 28.4: step = gx·16 >> EXTRA, rounded.
         let step = if n == 0 { 0 } else { self.step };
@@ -115,15 +113,18 @@ impl Gradient {
             && y.abs() < pixel_range
             && len < 1 << 16
         {
-            // See `small` and `narrow`: |px|, |py| < 2^29 here,
-            // |step| < 2^27 and n < 2^16 (the span is clipped to the
-            // target), so every product is a 32×32→64 multiply.
+            // See `small` and `narrow`: |x·16|, |y·16| < 2^20 and the
+            // origin is within ±2^28, so |px|, |py| < 2^29 (in i32, no
+            // 64-bit arithmetic), |step| < 2^27 and n < 2^16 (the span is
+            // clipped to the target): every product is a 32×32→64 multiply.
+            let px = x * 16 + 8 - self.x0;
+            let py = y * 16 + 8 - self.y0;
             let mul = crate::scalar::widening_mul;
-            let v = self.base + mul(self.gx as i32, px as i32) + mul(self.gy as i32, py as i32);
+            let v = self.base + mul(self.gx as i32, px) + mul(self.gy as i32, py);
             let start = (v + (1 << (EXTRA - 1))) >> EXTRA;
             (start, start + mul(step as i32, n as i32))
         } else {
-            self.wide_ends(x, y, len, px, py, step, n)
+            self.wide_ends(x, y, len, step, n)
         };
         let (lo64, hi64) = (lo as i64, hi as i64);
         if start >= lo64 && start <= hi64 && end >= lo64 && end <= hi64 {
@@ -157,17 +158,9 @@ impl Gradient {
     /// both arms are free of side effects), which on ARMv6-M cost four
     /// 64-bit library multiplies per span.
     #[inline(never)]
-    #[allow(clippy::too_many_arguments)]
-    fn wide_ends(
-        &self,
-        x: i32,
-        y: i32,
-        len: u32,
-        px: i64,
-        py: i64,
-        step: i64,
-        n: i64,
-    ) -> (i64, i64) {
+    fn wide_ends(&self, x: i32, y: i32, len: u32, step: i64, n: i64) -> (i64, i64) {
+        let px = (x as i64) * 16 + 8 - self.x0 as i64;
+        let py = (y as i64) * 16 + 8 - self.y0 as i64;
         let pixel_range = 1 << 16;
         if self.small && x.abs() < pixel_range && y.abs() < pixel_range && len < 1 << 16 {
             // See `small`; n < 2^16 and |step·n| < 2^44.

@@ -10,6 +10,9 @@
 //! rows before it (bands render bit-identically) and costs one
 //! multiply-add per quantity per span.
 
+use crate::scalar::recip62;
+use crate::scalar::widening_mul_u32;
+
 /// Extra fractional bits kept in the gradients beyond the values' own.
 const EXTRA: u32 = 8;
 
@@ -35,12 +38,87 @@ pub(super) struct Gradient {
     narrow: bool,
 }
 
-/// The three vertices the planes are fitted through: positions (28.4) and
-/// the doubled signed area `A ≠ 0`.
+/// The three vertices the planes are fitted through: positions (28.4),
+/// the doubled signed area `A ≠ 0`, and its reciprocal when `|A| < 2^31`
+/// (every polygon of a viewport up to 2^11 pixels: see [`AreaRecip`]).
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Basis {
     pub(super) p: [(i32, i32); 3],
     pub(super) area2: i64,
+    pub(super) recip: Option<AreaRecip>,
+}
+
+/// `|A|` (below 2^31) with `⌈2^62/d'⌉`, `d' = |A|·2^s` normalized into
+/// `[2^30, 2^31)`: one reciprocal ([`recip62`]) shared by every gradient
+/// of a polygon, so each quotient is two 32×32→64 multiplies and a
+/// check instead of a 64-bit library division (about 280 instructions on
+/// ARMv6-M).
+///
+/// Why one correction suffices: for `u < 2^(62−s)` the estimate
+/// `⌊u·r / 2^(62−s)⌋` lies in `[u/|A|, u/|A| + 1)` (`r` overestimates
+/// `2^62/d'` by less than one, which moves `u·r/2^(62−s)` by less than
+/// `u·2^s/2^62 < 1`), so it is `⌊u/|A|⌋` or one more, and the product
+/// with `|A|` tells which. In that range the quotient is below 2^32.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct AreaRecip {
+    d: u32,
+    /// `30 − s`: the estimate is `(u·r / 2^32) >> k`.
+    k: u32,
+    r: u64,
+}
+
+impl AreaRecip {
+    /// The reciprocal of `|area2|`, if it is in `[1, 2^31)`.
+    pub(super) fn new(area2: i64) -> Option<Self> {
+        let d = area2.unsigned_abs();
+        if d == 0 || d >= 1 << 31 {
+            return None;
+        }
+        let d = d as u32;
+        let s = d.leading_zeros() - 1;
+        Some(Self {
+            d,
+            k: 30 - s,
+            r: recip62(d << s),
+        })
+    }
+
+    /// `⌊u / |A|⌋` when `u < 2^(32+k)` (then below 2^32), else `None`.
+    #[inline]
+    fn div_floor(&self, u: u64) -> Option<u64> {
+        if u >> (32 + self.k) != 0 {
+            return None;
+        }
+        let e = if self.r >> 32 != 0 {
+            // r = 2^32 exactly (|A| a power of two): u·r / 2^(62−s).
+            u >> self.k
+        } else {
+            // u·r / 2^32 with u < 2^62 and r < 2^32: below 2^62 + 2^32.
+            let r = self.r as u32;
+            let (ul, uh) = (u as u32, (u >> 32) as u32);
+            (widening_mul_u32(uh, r) + (widening_mul_u32(ul, r) >> 32)) >> self.k
+        };
+        // e is ⌊u/|A|⌋ or one more, below 2^32 + 1.
+        if e >> 32 != 0 {
+            return None;
+        }
+        Some(if widening_mul_u32(e as u32, self.d) > u {
+            e - 1
+        } else {
+            e
+        })
+    }
+
+    /// [`div_round`]`(num, den)` for `den = ±|A|` and `|num| < 2^62`,
+    /// when the quotient is in range of [`Self::div_floor`]; `None` then
+    /// the caller divides.
+    #[inline]
+    pub(super) fn div_round(&self, num: i64, den: i64) -> Option<i64> {
+        // div_round: truncate (|num| + ⌊|den|/2⌋) / |den|, signed.
+        let u = num.unsigned_abs() + (self.d / 2) as u64;
+        let q = self.div_floor(u)? as i64;
+        Some(if (num < 0) != (den < 0) { -q } else { q })
+    }
 }
 
 impl Gradient {
@@ -65,7 +143,11 @@ impl Gradient {
         let area = b.area2;
         let g = |v: i64| {
             if v.unsigned_abs() < 1 << (62 - EXTRA) {
-                div_round(v << EXTRA, area)
+                let num = v << EXTRA;
+                match b.recip.and_then(|r| r.div_round(num, area)) {
+                    Some(q) => q,
+                    None => div_round(num, area),
+                }
             } else {
                 div_round_shifted(v, area)
             }

@@ -670,6 +670,84 @@ fn shifted_division_edges() {
     }
 }
 
+/// The shared area reciprocal (`AreaRecip`, the set-up's division for
+/// polygons with two planes or more) against the exact i128 quotient:
+/// whenever it answers it gives `div_round`'s value, and it answers for
+/// every quotient below 2^31 in magnitude (the claim that one correction
+/// step suffices there).
+fn check_area_recip(num: i64, den: i64) {
+    use super::gradient::AreaRecip;
+    let Some(r) = AreaRecip::new(den) else {
+        assert!(den == 0 || den.unsigned_abs() >= 1 << 31, "den = {den}");
+        return;
+    };
+    let want = div_round_i128(num as i128, den as i128);
+    match r.div_round(num, den) {
+        Some(q) => assert_eq!(q, want, "num = {num}, den = {den}"),
+        None => assert!(
+            want.unsigned_abs() >= 1 << 31,
+            "num = {num}, den = {den}: no answer for {want}"
+        ),
+    }
+}
+
+proptest! {
+    #[test]
+    fn area_recip_matches_i128(
+        num in any::<i64>(), nshift in 2u32..64, den in any::<i32>(), dshift in 0u32..32,
+    ) {
+        // Numerators below 2^62 of every magnitude, denominators of every
+        // magnitude below 2^31 (the set-up's range) and both signs.
+        check_area_recip(num >> nshift, (den >> dshift) as i64);
+    }
+}
+
+#[test]
+fn area_recip_edges() {
+    let mut dens = vec![
+        1i64,
+        2,
+        3,
+        (1 << 31) - 1,
+        1 << 30,
+        (1 << 30) + 1,
+        (1 << 30) - 1,
+        1 << 31,
+    ];
+    for k in 0..31 {
+        // Powers of two (the reciprocal is exactly 2^32) and their neighbours.
+        dens.extend([1i64 << k, (1 << k) + 1, (1i64 << k).max(2) - 1]);
+    }
+    for &d in &dens.clone() {
+        dens.push(-d);
+    }
+    for &den in &dens {
+        let d = den.unsigned_abs() as i64;
+        // Quotients at and around 2^31 and 2^32, ties, zero, the largest
+        // numerators.
+        let mut nums = vec![
+            0i64,
+            1,
+            -1,
+            d / 2,
+            d / 2 + 1,
+            d - 1,
+            d,
+            (1 << 62) - 1,
+            -(1 << 62) + 1,
+        ];
+        for q in [1i64 << 31, (1 << 31) - 1, 1 << 32, (1 << 32) - 1, 12345] {
+            let n = (q as i128 * d as i128).min((1 << 62) - 1) as i64;
+            nums.extend([n, n - 1, n + 1, n + d / 2, n - d / 2, -n, -(n - 1)]);
+        }
+        for num in nums {
+            if num.unsigned_abs() < 1 << 62 {
+                check_area_recip(num, den);
+            }
+        }
+    }
+}
+
 #[cfg(feature = "texture")]
 fn checker() -> [char; 16] {
     // 4×4 texels: row j, column i is a letter from "abcd" + row offset.

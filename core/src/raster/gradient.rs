@@ -86,27 +86,36 @@ impl AreaRecip {
     /// `⌊u / |A|⌋` when `u < 2^(32+k)` (then below 2^32), else `None`.
     #[inline]
     fn div_floor(&self, u: u64) -> Option<u64> {
-        if u >> (32 + self.k) != 0 {
-            return None;
+        // Shifts of 32-bit halves only: a variable 64-bit shift is a
+        // library call on ARMv6-M.
+        let (ul, uh) = (u as u32, (u >> 32) as u32);
+        let k = self.k;
+        if uh >> k != 0 {
+            return None; // u ≥ 2^(32+k)
         }
-        let e = if self.r >> 32 != 0 {
-            // r = 2^32 exactly (|A| a power of two): u·r / 2^(62−s).
-            u >> self.k
+        // h = u·r / 2^32: r = 2^32 exactly (|A| a power of two) gives u;
+        // otherwise u < 2^62 and r < 2^32 keep it below 2^62 + 2^32.
+        let h = if self.r >> 32 != 0 {
+            u
         } else {
-            // u·r / 2^32 with u < 2^62 and r < 2^32: below 2^62 + 2^32.
             let r = self.r as u32;
-            let (ul, uh) = (u as u32, (u >> 32) as u32);
-            (widening_mul_u32(uh, r) + (widening_mul_u32(ul, r) >> 32)) >> self.k
+            widening_mul_u32(uh, r) + (widening_mul_u32(ul, r) >> 32)
         };
-        // e is ⌊u/|A|⌋ or one more, below 2^32 + 1.
-        if e >> 32 != 0 {
+        // e = h >> k: ⌊u/|A|⌋ or one more, below 2^32 + 1.
+        let (hl, hh) = (h as u32, (h >> 32) as u32);
+        if hh >> k != 0 {
             return None;
         }
-        Some(if widening_mul_u32(e as u32, self.d) > u {
+        let e = if k == 0 {
+            hl
+        } else {
+            (hl >> k) | (hh << (32 - k))
+        };
+        Some(if widening_mul_u32(e, self.d) > u {
             e - 1
         } else {
             e
-        })
+        } as u64)
     }
 
     /// [`div_round`]`(num, den)` for `den = ±|A|` and `|num| < 2^62`,

@@ -11,7 +11,7 @@
 //! multiply-add per quantity per span.
 
 use crate::scalar::recip62;
-use crate::scalar::widening_mul_u32;
+use crate::scalar::{shr_to_u32, widening_mul_u32};
 
 /// Extra fractional bits kept in the gradients beyond the values' own.
 const EXTRA: u32 = 8;
@@ -102,15 +102,7 @@ impl AreaRecip {
             widening_mul_u32(uh, r) + (widening_mul_u32(ul, r) >> 32)
         };
         // e = h >> k: ⌊u/|A|⌋ or one more, below 2^32 + 1.
-        let (hl, hh) = (h as u32, (h >> 32) as u32);
-        if hh >> k != 0 {
-            return None;
-        }
-        let e = if k == 0 {
-            hl
-        } else {
-            (hl >> k) | (hh << (32 - k))
-        };
+        let e = shr_to_u32(h, k)?;
         Some(if widening_mul_u32(e, self.d) > u {
             e - 1
         } else {

@@ -262,6 +262,23 @@ pub(crate) fn widening_mul_u32(a: u32, b: u32) -> u64 {
     }
 }
 
+/// `p >> sh` (`sh < 64`) if it is below 2^32, else `None`, by shifts of
+/// 32-bit halves: a variable 64-bit shift is a library call
+/// (`__aeabi_llsr`) on ARMv6-M.
+#[inline(always)]
+pub(crate) fn shr_to_u32(p: u64, sh: u32) -> Option<u32> {
+    let (lo, hi) = (p as u32, (p >> 32) as u32);
+    if sh >= 32 {
+        Some(hi >> (sh - 32))
+    } else if hi >> sh != 0 {
+        None
+    } else if sh == 0 {
+        Some(lo)
+    } else {
+        Some((lo >> sh) | (hi << (32 - sh)))
+    }
+}
+
 /// `a·b = aₕbₕ·2³² + (aₕbₗ + aₗbₕ)·2¹⁶ + aₗbₗ` with 16-bit halves; every
 /// partial product is below 2³², and the sum below 2⁶⁴.
 #[inline(always)]
@@ -681,10 +698,7 @@ impl<Frac: LeEqU32 + 'static> Scalar for Fx<Frac> {
                 widening_mul_u32(a, r as u32)
             };
             // ⌊exact⌋ or one more; beyond 2^32 the quotient is out of range.
-            let q = p >> sh;
-            if q >> 32 != 0 {
-                return None;
-            }
+            let q = shr_to_u32(p, sh)? as u64;
             let num = (a as u64) << f;
             let qd = widening_mul_u32(q as u32, dm);
             let (q, rem) = if qd > num {

@@ -640,3 +640,27 @@ fn dot16_small_equals_the_generic_dot() {
         Some(7 << 15)
     );
 }
+
+/// `shr_to_u32` is `p >> sh` when that is below 2^32 and `None`
+/// otherwise, for every shift and values at the boundaries.
+#[test]
+fn shr_to_u32_is_the_64_bit_shift() {
+    use super::fixed_point::shr_to_u32;
+    let mut x = 0x9e37_79b9_7f4a_7c15_u64;
+    let mut ps = vec![0u64, 1, u32::MAX as u64, 1 << 32, u64::MAX, (1 << 63) | 1];
+    for k in 0..64 {
+        ps.extend([1u64 << k, (1u64 << k).wrapping_sub(1), (1u64 << k) | 1]);
+    }
+    for _ in 0..2000 {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        ps.push(x >> (x & 63));
+    }
+    for &p in &ps {
+        for sh in 0..64 {
+            let want = u32::try_from(p >> sh).ok();
+            assert_eq!(shr_to_u32(p, sh), want, "p = {p:#x}, sh = {sh}");
+        }
+    }
+}

@@ -79,6 +79,9 @@ impl<S: Scalar> Mat3<S> {
     /// `M·v`.
     #[must_use]
     pub fn mul_vec3(&self, v: Vec3<S>) -> Vec3<S> {
+        if let Some(r) = S::mat3_vec3_fast(&self.m, v.to_array()) {
+            return Vec3::from_array(r);
+        }
         Vec3::new(self.row(0).dot(v), self.row(1).dot(v), self.row(2).dot(v))
     }
     /// `self · rhs`.

@@ -387,6 +387,29 @@ pub(crate) fn dot16_small3(a: [i32; 3], b: [i32; 3]) -> Option<i32> {
     Some(p0.saturating_add(p1).saturating_add(p2))
 }
 
+/// `[m[i]·v]` as three [`dot16_small3`] rows compute them, when all
+/// twelve operands lie in `[−2²³, 2²³)` (one test: their biased OR);
+/// `None` otherwise.
+#[inline(always)]
+#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
+pub(crate) fn mat3_vec16_small(m: &[[i32; 3]; 3], v: [i32; 3]) -> Option<[i32; 3]> {
+    const LIM: u32 = 1 << 23;
+    let bias = |x: i32| (x as u32).wrapping_add(LIM);
+    let mut any = bias(v[0]) | bias(v[1]) | bias(v[2]);
+    for row in m {
+        any |= bias(row[0]) | bias(row[1]) | bias(row[2]);
+    }
+    if any >= 2 * LIM {
+        return None;
+    }
+    Some(m.map(|r| {
+        let p0 = mul16_in_range(r[0], v[0]);
+        let p1 = mul16_in_range(r[1], v[1]);
+        let p2 = mul16_in_range(r[2], v[2]);
+        p0.saturating_add(p1).saturating_add(p2)
+    }))
+}
+
 /// [`mul16_small`] without the range test: `a` and `b` in `[−2²³, 2²³)`.
 #[inline(always)]
 #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
@@ -651,6 +674,18 @@ impl<Frac: LeEqU32 + 'static> Scalar for Fx<Frac> {
             return dot16_small3(bits(a), bits(b)).map(Self::from_bits);
         }
         let _ = (a, b);
+        None
+    }
+    #[inline]
+    fn mat3_vec3_fast(m: &[[Self; 3]; 3], v: [Self; 3]) -> Option<[Self; 3]> {
+        // On ARMv6-M, three `dot16_small3` rows behind one range test of
+        // the twelve operands (the vector's are shared): the same values.
+        #[cfg(all(target_arch = "arm", not(target_has_atomic = "ptr")))]
+        if Self::FRAC == 16 {
+            let mb = m.map(|r| r.map(|x| x.bits));
+            return mat3_vec16_small(&mb, v.map(|x| x.bits)).map(|r| r.map(Self::from_bits));
+        }
+        let _ = (m, v);
         None
     }
     fn checked_mul(self, rhs: Self) -> Option<Self> {

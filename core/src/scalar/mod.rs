@@ -173,6 +173,17 @@ pub trait Scalar:
         None
     }
 
+    /// `[m[0]·v, m[1]·v, m[2]·v]`, each row as [`Self::dot_fast`] gives it,
+    /// by a faster route where the type has one for these operands
+    /// (`None` sends the caller to three dot products). Fixed point on
+    /// ARMv6-M tests the range of all twelve operands once.
+    #[must_use]
+    #[inline]
+    fn mat3_vec3_fast(m: &[[Self; 3]; 3], v: [Self; 3]) -> Option<[Self; 3]> {
+        let _ = (m, v);
+        None
+    }
+
     /// The smaller of two values (`other` if they are unordered).
     ///
     /// Named `min_of` rather than `min` on purpose: the fixed-point types

@@ -664,3 +664,41 @@ fn shr_to_u32_is_the_64_bit_shift() {
         }
     }
 }
+
+/// `mat3_vec16_small` is the three rows' `dot16_small3` whenever it
+/// answers, and answers exactly when every operand is inside the limit.
+#[test]
+fn mat3_vec16_small_equals_three_dots() {
+    use super::fixed_point::{dot16_small3, mat3_vec16_small};
+    let lim = 1i32 << 23;
+    let inside = |x: &i32| (-lim..lim).contains(x);
+    let check = |m: [[i32; 3]; 3], v: [i32; 3]| {
+        let all_in = v.iter().all(inside) && m.iter().flatten().all(inside);
+        match mat3_vec16_small(&m, v) {
+            Some(r) => {
+                assert!(all_in, "{m:?}·{v:?} answered outside the limit");
+                for i in 0..3 {
+                    assert_eq!(Some(r[i]), dot16_small3(m[i], v), "{m:?}·{v:?}, row {i}");
+                }
+            }
+            None => assert!(!all_in, "{m:?}·{v:?} refused inside the limit"),
+        }
+    };
+    let big = lim - 1;
+    check([[big; 3]; 3], [big; 3]);
+    check([[-lim, -lim, 0], [0; 3], [big, -lim, 1]], [-lim, -lim, 0]);
+    check([[0; 3], [0, lim, 0], [0; 3]], [1, 1, 1]);
+    check([[0; 3]; 3], [0, 0, -lim - 1]);
+    let mut rng = crate::test_util::Rng::new(4711);
+    for _ in 0..1 << 15 {
+        let m = if rng.range(0.0, 1.0) < 0.5 {
+            lim as f64 * 1.0003
+        } else {
+            65536.0 * 4.0
+        };
+        let mut r = || rng.range(-m, m) as i32;
+        let mm = [[r(), r(), r()], [r(), r(), r()], [r(), r(), r()]];
+        let v = [r(), r(), r()];
+        check(mm, v);
+    }
+}

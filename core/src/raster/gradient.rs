@@ -40,7 +40,8 @@ pub(super) struct Gradient {
 
 /// The three vertices the planes are fitted through: positions (28.4),
 /// the doubled signed area `A ≠ 0`, and its reciprocal when `|A| < 2^31`
-/// (every polygon of a viewport up to 2^11 pixels: see [`AreaRecip`]).
+/// (any triangle within ±1024 pixels: edges below 2^15 in 28.4, each
+/// product below 2^30) and the set-up shares it (see [`AreaRecip`]).
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Basis {
     pub(super) p: [(i32, i32); 3],

@@ -251,9 +251,7 @@ def price(core, insns, cost, kinds, taken):
                 c = 14 * n
             elif re.match(r"^v(n?ml[as]|fm[as]|fnm[as])\.f32$", mn):
                 c = 3 * n
-            elif mn in ("mla", "mls"):
-                c = 2 * n
-            else:
+            else:  # ALU, and every multiply (MUL, MLA, UMULL, ... one cycle)
                 c = n
             lo += c
             hi += c

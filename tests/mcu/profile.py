@@ -214,7 +214,8 @@ def price(core, insns, cost, kinds, taken):
             elif k in ("cond", "jump"):
                 c = n + t
             elif k == "indirect":
-                c = (3 + regs(ops)) * n if mn.startswith("pop") else 2 * n
+                # POP {loreglist, PC}: 3 + N, N counting the low registers.
+                c = (3 + regs(ops) - 1) * n if mn.startswith("pop") else 2 * n
             elif mn in ("push", "pop", "ldm", "stm", "ldmia", "stmia"):
                 c = (1 + regs(ops)) * n
             elif LOADSTORE.match(mn):

@@ -377,6 +377,14 @@ impl<S: Scalar> Pipeline<S> {
     /// Clips and projects one convex view-space polygon to the scan
     /// converter's input, applying face culling: `Ok(None)` if culled.
     ///
+    /// Clipping is exact in view space, but the clipped vertices snap to
+    /// 28.4 screen positions: a sliver seen nearly edge-on (well below a
+    /// pixel of area) can snap to a polygon that is not convex, or flip its
+    /// orientation. [`fill_polygon`] covers such a polygon with one span
+    /// per row between its chains, so it may cover a pixel its neighbour
+    /// also covers; with a depth buffer the nearer one wins, without one
+    /// the later one.
+    ///
     /// For strip rendering, project each polygon once per frame and keep
     /// the results; then call [`fill_polygon`] per band, which rejects
     /// polygons outside the band after one comparison. The result may

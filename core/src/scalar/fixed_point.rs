@@ -381,10 +381,18 @@ pub(crate) fn dot16_small3(a: [i32; 3], b: [i32; 3]) -> Option<i32> {
     if any >= 2 * LIM {
         return None;
     }
+    Some(dot16_in_range3(a, b))
+}
+
+/// [`dot16_small3`] without the range test: every operand in
+/// `[−2²³, 2²³)`.
+#[inline(always)]
+#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
+fn dot16_in_range3(a: [i32; 3], b: [i32; 3]) -> i32 {
     let p0 = mul16_in_range(a[0], b[0]);
     let p1 = mul16_in_range(a[1], b[1]);
     let p2 = mul16_in_range(a[2], b[2]);
-    Some(p0.saturating_add(p1).saturating_add(p2))
+    p0.saturating_add(p1).saturating_add(p2)
 }
 
 /// `[m[i]·v]` as three [`dot16_small3`] rows compute them, when all
@@ -402,12 +410,7 @@ pub(crate) fn mat3_vec16_small(m: &[[i32; 3]; 3], v: [i32; 3]) -> Option<[i32; 3
     if any >= 2 * LIM {
         return None;
     }
-    Some(m.map(|r| {
-        let p0 = mul16_in_range(r[0], v[0]);
-        let p1 = mul16_in_range(r[1], v[1]);
-        let p2 = mul16_in_range(r[2], v[2]);
-        p0.saturating_add(p1).saturating_add(p2)
-    }))
+    Some(m.map(|r| dot16_in_range3(r, v)))
 }
 
 /// [`mul16_small`] without the range test: `a` and `b` in `[−2²³, 2²³)`.

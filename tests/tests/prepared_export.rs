@@ -113,55 +113,39 @@ fn same_as_run_time<S: Scalar, const N: usize>(
     assert_eq!(differ, 0, "{name}: {differ} pixels differ");
 }
 
+/// `same_as_run_time` for the exported module `$m` of built-in scene `$scene`.
+macro_rules! check {
+    ($m:ident, $name:expr, $scene:expr, $S:ty, $N:literal) => {
+        same_as_run_time::<$S, $N>(
+            $name,
+            &$scene,
+            $m::objects().unwrap(),
+            $m::renderer().unwrap(),
+            $m::VERTICES,
+        )
+    };
+}
+
 #[test]
 fn exported_cube_equals_run_time_preparation() {
-    let objects = cube::objects().unwrap();
-    same_as_run_time::<I16F16, 2>(
-        "cube",
-        &builtin::CUBE,
-        objects,
-        cube::renderer().unwrap(),
-        cube::VERTICES,
-    );
+    check!(cube, "cube", builtin::CUBE, I16F16, 2);
 }
 
 #[test]
 fn exported_bunny_equals_run_time_preparation() {
-    let objects = bunny::objects().unwrap();
-    same_as_run_time::<I16F16, 2>(
-        "bunny",
-        &builtin::BUNNY,
-        objects,
-        bunny::renderer().unwrap(),
-        bunny::VERTICES,
-    );
-    let objects = bunny_f32::objects().unwrap();
-    same_as_run_time::<f32, 2>(
-        "bunny f32",
-        &builtin::BUNNY,
-        objects,
-        bunny_f32::renderer().unwrap(),
-        bunny_f32::VERTICES,
-    );
+    check!(bunny, "bunny", builtin::BUNNY, I16F16, 2);
+    check!(bunny_f32, "bunny f32", builtin::BUNNY, f32, 2);
 }
 
 #[test]
 fn exported_corridors_equal_run_time_preparation() {
-    let objects = corridor::objects().unwrap();
-    same_as_run_time::<I16F16, 1>(
-        "corridor",
-        &builtin::CORRIDOR,
-        objects,
-        corridor::renderer().unwrap(),
-        corridor::VERTICES,
-    );
-    let objects = corridor_affine::objects().unwrap();
-    same_as_run_time::<I16F16, 1>(
+    check!(corridor, "corridor", builtin::CORRIDOR, I16F16, 1);
+    check!(
+        corridor_affine,
         "corridor-affine",
-        &builtin::CORRIDOR_AFFINE,
-        objects,
-        corridor_affine::renderer().unwrap(),
-        corridor_affine::VERTICES,
+        builtin::CORRIDOR_AFFINE,
+        I16F16,
+        1
     );
 }
 

@@ -414,6 +414,13 @@ impl<S: Scalar> Projection<S> {
                 if p.z <= S::ZERO || !p.z.is_finite() {
                     return None;
                 }
+                // The same values by a faster route (16.16: one reciprocal
+                // and no division), where the scalar has one.
+                if let Some((sx, sy, inv_z)) = S::perspective_fast(p.x, p.y, p.z, focus) {
+                    let sx = self.center.x.checked_add(sx)?;
+                    let sy = self.center.y.checked_add(sy)?;
+                    return Some((Vec2::new(sx, sy), inv_z));
+                }
                 // One division for both coordinates: r = f/z, then x·r and
                 // y·r (a division costs ~300 instructions on ARMv6-M in
                 // fixed point, a multiply ~30). In I16F16 r is within 2⁻¹⁷

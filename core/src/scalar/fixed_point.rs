@@ -26,7 +26,7 @@
 //! to within one step of any format up to `Fx<U24>`; the measured errors for
 //! I16F16 are in the crate's tests and in the accuracy report.
 
-use super::{Scalar, recip62};
+use super::{Scalar, recip62, recip62_floor};
 use core::cmp::Ordering;
 use core::fmt;
 use core::marker::PhantomData;
@@ -277,6 +277,84 @@ pub(crate) fn shr_to_u32(p: u64, sh: u32) -> Option<u32> {
     } else {
         Some((lo >> sh) | (hi << (32 - sh)))
     }
+}
+
+/// The perspective projection of a 16.16 view point, `(x·r, y·r, 1/z)`
+/// with `r = f/z`, each value rounded as [`Scalar::checked_quotients`]
+/// (half away from zero) and [`Scalar::checked_mul`] (half up) round it:
+/// the values `Projection::project`'s general route gives, from one
+/// reciprocal of `z`, no division and no 64-bit arithmetic but three
+/// widening multiplies.
+///
+/// Answers for `z ≥ 2⁻⁸`, `|x|, |y| ≤ 128` (the general route's bound
+/// for sharing `f/z`) and `0 < f < 2^(28−s)` (`s` below: any focus below
+/// 16384 pixels from `z = 1`, below 1024 from `z = 2⁻⁴`) when every
+/// result fits; `None` sends the caller to the general route.
+///
+/// Why it is exact. With `z' = z·2^s` in `[2^30, 2^31)` and
+/// `R = 2^62/z'`, the quotient `q = ⌊a·2^16/z⌋ = ⌊a·R / 2^(46−s)⌋` for
+/// `a = 1` (as 2^16) and `a = f`. [`recip62_floor`] gives `r ≤ R` with
+/// `⌊R⌋ − r ≤ 3` (for every divisor: `recip62_exhaustive`), so `R − r < 4`
+/// and `e = ⌊a·r / 2^(46−s)⌋` is at most `q` and short by less than
+/// `4a/2^(46−s) + 1 ≤ 2` while `a ≤ 2^(44−s)`: `e` is `q` or `q − 1`. The
+/// remainder `a·2^16 − e·z` is then in `[0, 2z)`, below 2^32, so it is
+/// exact in wrapping 32-bit arithmetic; one conditional subtraction of
+/// `z` leaves `q` and `a·2^16 − q·z`, which rounds it.
+#[inline]
+pub(crate) fn perspective16(x: i32, y: i32, z: i32, f: i32) -> Option<(i32, i32, i32)> {
+    const AXIS: u32 = 128 << 16;
+    if z < 1 << 8 || f <= 0 || x.unsigned_abs() > AXIS || y.unsigned_abs() > AXIS {
+        return None;
+    }
+    let d = z as u32;
+    let s = normalize_shift(d); // in [0, 22]
+    let sh = 46 - s; // in [24, 46]
+    if (f as u32).checked_shr(sh - 2).unwrap_or(0) != 0 {
+        return None;
+    }
+    // r ≤ 2^62/2^30 = 2^32: clamped, still R − r < 4.
+    let r = recip62_floor(d << s).min(u32::MAX as u64) as u32;
+    let quotient = |a: u32, e: u32| -> Option<i32> {
+        // q ≤ 2^30 (a ≤ 2^(44−s), z ≥ 2^(30−s)): e + 1 cannot overflow.
+        let (mut e, mut rem) = (e, (a << 16).wrapping_sub(e.wrapping_mul(d)));
+        if rem >= d {
+            rem -= d;
+            e += 1;
+        }
+        // rem < z < 2^31: round half away from zero (the values are positive).
+        i32::try_from(e as u64 + u64::from(rem >= d - rem)).ok()
+    };
+    // a = 2^16: a·r / 2^sh is a shift of r.
+    let inv_z = quotient(1 << 16, r >> (sh - 16))?;
+    let ratio = quotient(f as u32, shr_to_u32(widening_mul_u32(f as u32, r), sh)?)?;
+    // |x| ≤ 2^23, ratio < 2^31: the product is below 2^54.
+    let mul = |v: i32| i32::try_from((widening_mul(v, ratio) + (1 << 15)) >> 16).ok();
+    Some((mul(x)?, mul(y)?, inv_z))
+}
+
+/// The shift `s` that puts `d` (in `[1, 2^31)`) into `[2^30, 2^31)`:
+/// `d.leading_zeros() − 1` by four compares, where ARMv6-M has no
+/// count-leading-zeros instruction (`__clzsi2` is a call of about 30
+/// instructions).
+#[inline(always)]
+fn normalize_shift(d: u32) -> u32 {
+    let (mut d, mut s) = (d, 0);
+    macro_rules! step {
+        ($k:literal) => {
+            if d < 1 << (31 - $k) {
+                d <<= $k;
+                s += $k;
+            }
+        };
+    }
+    step!(16);
+    step!(8);
+    step!(4);
+    step!(2);
+    if d < 1 << 30 {
+        s += 1;
+    }
+    s
 }
 
 /// `a·b = aₕbₕ·2³² + (aₕbₗ + aₗbₕ)·2¹⁶ + aₗbₗ` with 16-bit halves; every
@@ -707,6 +785,18 @@ impl<Frac: LeEqU32 + 'static> Scalar for Fx<Frac> {
         } else {
             Self::fits(Self::div_wide(self.bits, rhs.bits))
         }
+    }
+    #[inline]
+    fn perspective_fast(x: Self, y: Self, z: Self, focus: Self) -> Option<(Self, Self, Self)> {
+        if Self::FRAC != 16 {
+            return None;
+        }
+        let (sx, sy, inv_z) = perspective16(x.bits, y.bits, z.bits, focus.bits)?;
+        Some((
+            Self::from_bits(sx),
+            Self::from_bits(sy),
+            Self::from_bits(inv_z),
+        ))
     }
     fn checked_quotients<const N: usize>(nums: [Self; N], d: Self) -> [Option<Self>; N] {
         let f = Self::FRAC;

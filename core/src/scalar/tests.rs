@@ -425,10 +425,14 @@ fn from_f32_exhaustive() {
 #[test]
 #[ignore = "2^30 divisors: run in release with --ignored (about 10 s)"]
 fn recip62_exhaustive() {
-    use super::recip62;
+    use super::{recip62, recip62_floor};
     for d in (1u32 << 30)..(1u32 << 31) {
         let exact = (1u128 << 62).div_ceil(d as u128) as u64;
         assert_eq!(recip62(d), exact, "d = {d}");
+        let floor = ((1u128 << 62) / d as u128) as u64;
+        let x = recip62_floor(d);
+        // perspective16's exactness rests on this bound.
+        assert!(x <= floor && floor - x < 4, "d = {d}: {x} against {floor}");
     }
 }
 
@@ -446,8 +450,82 @@ fn recip62_is_the_exact_ceiling() {
     for d in ds {
         if (1 << 30..1 << 31).contains(&d) {
             assert_eq!(recip62(d), exact(d), "d = {d}");
+            // The unstepped estimate: never above 2^62/d, within 4 units.
+            let floor = ((1u128 << 62) / d as u128) as u64;
+            let x = super::recip62_floor(d);
+            assert!(x <= floor && floor - x < 4, "d = {d}: {x} against {floor}");
         }
     }
+}
+
+/// `perspective16` against an exact i128 oracle of the general route's
+/// roundings (quotients half away from zero, products half up), and it
+/// answers throughout the range its doc promises one step for.
+#[test]
+fn perspective16_is_the_general_route() {
+    use super::fixed_point::perspective16;
+    let q = |n: i128, d: i128| -> i128 {
+        // Half away from zero, n and d positive.
+        (2 * n + d) / (2 * d)
+    };
+    let oracle = |x: i32, y: i32, z: i32, f: i32| -> Option<(i32, i32, i32)> {
+        let inv = i32::try_from(q(1 << 32, z as i128)).ok()?;
+        let r = i32::try_from(q((f as i128) << 16, z as i128)).ok()?;
+        let m = |v: i32| i32::try_from((v as i128 * r as i128 + (1 << 15)) >> 16).ok();
+        Some((m(x)?, m(y)?, inv))
+    };
+    let mut rng = Rng::new(7);
+    let mut answered = 0;
+    let cases = 200_000;
+    for i in 0..cases {
+        let pick = |rng: &mut Rng, lo: f64, hi: f64| rng.range(lo, hi).exp2() as i64;
+        let z = match i % 4 {
+            0 => pick(&mut rng, 8.0, 31.0) as i32,
+            1 => (pick(&mut rng, 12.0, 20.0) as i32) | 1,
+            2 => 1 << (8 + i % 23),
+            _ => (1 << (8 + i % 23)) - 1 + (i & 2),
+        };
+        let z = z.max(1 << 8);
+        let f = if i % 3 == 0 {
+            // At the bound f < 2^(44−s), where the estimate may be 2 short.
+            let s = z.leading_zeros() - 1;
+            let lim = 1i64 << (44 - s).min(31);
+            (lim - 1 - (pick(&mut rng, 0.0, 20.0) % lim)) as i32
+        } else {
+            pick(&mut rng, 10.0, 31.0) as i32
+        };
+        let sign = |rng: &mut Rng, v: i64| if rng.range(0.0, 1.0) < 0.5 { -v } else { v };
+        let x = pick(&mut rng, 0.0, 23.0);
+        let x = sign(&mut rng, x) as i32;
+        let y = pick(&mut rng, 0.0, 23.0);
+        let y = sign(&mut rng, y) as i32;
+        let (x, y) = if i % 97 == 0 {
+            (128 << 16, -(128 << 16))
+        } else {
+            (x, y)
+        };
+        let got = perspective16(x, y, z, f);
+        if let Some(g) = got {
+            answered += 1;
+            assert_eq!(Some(g), oracle(x, y, z, f), "x {x} y {y} z {z} f {f}");
+        } else if z >= 1 << 12 && f < 1 << 26 {
+            // The promised range: z ≥ 2^−4, focus below 1024.
+            assert_eq!(
+                oracle(x, y, z, f),
+                None,
+                "no answer for x {x} y {y} z {z} f {f}"
+            );
+        }
+    }
+    assert!(answered > cases / 2, "answered {answered} of {cases}");
+    // Outside its domain it leaves the work to the general route.
+    assert_eq!(perspective16(0, 0, (1 << 8) - 1, 1 << 16), None);
+    assert_eq!(perspective16(0, 0, 1 << 16, 0), None);
+    assert_eq!(perspective16((128 << 16) + 1, 0, 1 << 16, 1 << 16), None);
+    assert!(perspective16(0, 0, i32::MAX, 1 << 16).is_some());
+    // From z = 1 (s = 14), a focus of 2^14 pixels is one too many.
+    assert!(perspective16(0, 0, 1 << 16, (1 << 30) - 1).is_some());
+    assert_eq!(perspective16(0, 0, 1 << 16, 1 << 30), None);
 }
 
 #[test]

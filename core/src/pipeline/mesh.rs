@@ -119,12 +119,14 @@ impl<S: Scalar> Pipeline<S> {
             return MeshVertex::default();
         };
         let [x0, x1, y0, y1] = self.guard_rect;
-        let side = [screen.x < x0, screen.x > x1, screen.y < y0, screen.y > y1];
-        for (k, out) in side.into_iter().enumerate() {
-            if out {
-                outcode |= 1 << (depth_planes + k);
-            }
-        }
+        // Bits for x < x0, x > x1, y < y0, y > y1 above the depth planes'
+        // (built without branches: a loop over the four cost about 50
+        // instructions per vertex on ARMv6-M).
+        let side = u8::from(screen.x < x0)
+            | (u8::from(screen.x > x1) << 1)
+            | (u8::from(screen.y < y0) << 2)
+            | (u8::from(screen.y > y1) << 3);
+        outcode |= side << depth_planes;
         MeshVertex { outcode, screen }
     }
 

@@ -47,6 +47,10 @@ pub(super) struct Basis {
     pub(super) p: [(i32, i32); 3],
     pub(super) area2: i64,
     pub(super) recip: Option<AreaRecip>,
+    /// Every vertex within ±[`SMALL_COORD_LIMIT`](super::edge::SMALL_COORD_LIMIT)
+    /// (2^14 in 28.4): edge components within ±2^15, so a product of one
+    /// with an i32 difference takes two 32-bit multiplies ([`mul_short`]).
+    pub(super) short: bool,
 }
 
 /// `|A|` (below 2^31) with `⌈2^62/d'⌉`, `d' = |A|·2^s` normalized into
@@ -154,8 +158,17 @@ impl Gradient {
                 div_round_shifted(v, area)
             }
         };
-        let gx = g(cross(da1, e2.1, da2, e1.1));
-        let gy = g(cross(da2, e1.0, da1, e2.0));
+        let (nx, ny) = match (b.short, i32::try_from(da1), i32::try_from(da2)) {
+            // Each product below 2^46: the differences are exact in i64,
+            // the same values `cross` gives.
+            (true, Ok(d1), Ok(d2)) => {
+                let m = |d: i32, e: i64| mul_short(d, e as i32);
+                (m(d1, e2.1) - m(d2, e1.1), m(d2, e1.0) - m(d1, e2.0))
+            }
+            _ => (cross(da1, e2.1, da2, e1.1), cross(da2, e1.0, da1, e2.0)),
+        };
+        let gx = g(nx);
+        let gy = g(ny);
         let lim = 1i64 << 32;
         Self {
             base: a[0] << EXTRA,
@@ -260,6 +273,14 @@ impl Gradient {
             (start, start.saturating_add(step.saturating_mul(n)))
         }
     }
+}
+
+/// `d·e` for `|e| ≤ 2^15`, exact: with `d = dₕ·2^16 + dₗ` (`dₗ` in
+/// `[0, 2^16)`), `|dₕ·e| ≤ 2^30` and `|dₗ·e| < 2^31` are 32-bit products.
+/// Two multiplies where a 32×32→64 product is four on ARMv6-M.
+#[inline(always)]
+pub(super) fn mul_short(d: i32, e: i32) -> i64 {
+    (((d >> 16) * e) as i64) * (1 << 16) + ((d & 0xffff) * e) as i64
 }
 
 /// `p·q − r·s`: exact for the set-up's inputs (`|p|, |r| ≤ 2^32`,

@@ -260,7 +260,13 @@ where
         // Edge components below 2^29: each product is a 32×32→64 multiply.
         let (e1x, e1y) = (a.x - v0.x, a.y - v0.y);
         let (e2x, e2y) = (b.x - v0.x, b.y - v0.y);
-        let area2 = crate::scalar::widening_mul(e1x, e2y) - crate::scalar::widening_mul(e1y, e2x);
+        // Within ±SMALL_COORD_LIMIT they are within ±2^15, each product
+        // within ±2^30: two 32-bit multiplies.
+        let area2 = if reach <= edge::SMALL_COORD_LIMIT as u32 {
+            (e1x * e2y) as i64 - (e1y * e2x) as i64
+        } else {
+            crate::scalar::widening_mul(e1x, e2y) - crate::scalar::widening_mul(e1y, e2x)
+        };
         if area2.unsigned_abs() > best_area.unsigned_abs() {
             (best, best_area) = (k + 1, area2);
         }
@@ -274,6 +280,7 @@ where
     let basis = Basis {
         p: bv.map(|v| (v.x, v.y)),
         area2: best_area,
+        short: reach <= edge::SMALL_COORD_LIMIT as u32,
         // Shared by two planes or more (four quotients: depth and a
         // varying, or two varyings): for depth alone, two library
         // divisions cost less than the reciprocal (W1 on ARMv6-M: 1.6 %

@@ -691,7 +691,58 @@ fn check_area_recip(num: i64, den: i64) {
     }
 }
 
+#[test]
+fn mul_short_is_the_exact_product() {
+    use super::gradient::mul_short;
+    let mut ds = vec![
+        0i32,
+        1,
+        -1,
+        i32::MAX,
+        i32::MIN,
+        0xffff,
+        0x10000,
+        -0x10000,
+        -0xffff,
+    ];
+    let mut x = 0x2545_f491_u32;
+    for _ in 0..400 {
+        x ^= x << 13;
+        x ^= x >> 17;
+        x ^= x << 5;
+        ds.push(x as i32 >> (x % 31));
+    }
+    for &d in &ds {
+        for e in (-(1 << 15)..=1 << 15)
+            .step_by(7)
+            .chain([-(1 << 15), 1 << 15, -1, 1])
+        {
+            assert_eq!(mul_short(d, e), d as i64 * e as i64, "d = {d}, e = {e}");
+        }
+    }
+}
+
 proptest! {
+    /// The set-up's two-multiply products for short edges give the same
+    /// plane as the general products.
+    #[test]
+    fn short_edge_gradients_match_general(
+        p in proptest::array::uniform6(-(1i32 << 14)..=1 << 14),
+        a in proptest::array::uniform3(any::<i32>()),
+        shift in 0u32..32,
+    ) {
+        use super::gradient::{Basis, Gradient};
+        let p = [(p[0], p[1]), (p[2], p[3]), (p[4], p[5])];
+        let area2 = crate::scalar::widening_mul(p[1].0 - p[0].0, p[2].1 - p[0].1)
+            - crate::scalar::widening_mul(p[1].1 - p[0].1, p[2].0 - p[0].0);
+        prop_assume!(area2 != 0);
+        let a = a.map(|v| (v >> shift) as i64);
+        let basis = |short| Basis { p, area2, recip: None, short };
+        let fast = Gradient::new(&basis(true), a);
+        let general = Gradient::new(&basis(false), a);
+        prop_assert_eq!(std::format!("{fast:?}"), std::format!("{general:?}"));
+    }
+
     #[test]
     fn area_recip_matches_i128(
         num in any::<i64>(), nshift in 2u32..64, den in any::<i32>(), dshift in 0u32..32,

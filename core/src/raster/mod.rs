@@ -334,7 +334,7 @@ where
                 }
                 let (x, len) = (x0, (x1 - x0) as u32);
                 let (z, dz) = if Z::ENABLED {
-                    zgrad.span(x, y, len, 0, zmax)
+                    zgrad.span_with(x, y, len, 0, zmax, true)
                 } else {
                     (0, 0)
                 };

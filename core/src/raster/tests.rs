@@ -743,6 +743,28 @@ proptest! {
         prop_assert_eq!(std::format!("{fast:?}"), std::format!("{general:?}"));
     }
 
+    /// A plane's span values by the 32-bit route for tiny planes equal
+    /// the general route's, clamping included.
+    #[test]
+    fn tiny_gradient_spans_match_general(
+        p in proptest::array::uniform6(-(1i32 << 9)..=1 << 9),
+        a in proptest::array::uniform3(0i64..1 << 24),
+        x in -40i32..40, y in -40i32..40, len in 1u32..600,
+        lo in 0i32..1 << 20, width in 0i32..1 << 24,
+    ) {
+        use super::gradient::{Basis, Gradient};
+        let p = [(p[0], p[1]), (p[2], p[3]), (p[4], p[5])];
+        let area2 = crate::scalar::widening_mul(p[1].0 - p[0].0, p[2].1 - p[0].1)
+            - crate::scalar::widening_mul(p[1].1 - p[0].1, p[2].0 - p[0].0);
+        prop_assume!(area2 != 0);
+        let g = Gradient::new(&Basis { p, area2, recip: None, short: true }, a);
+        let hi = lo + width;
+        prop_assert_eq!(
+            g.span_with(x, y, len, lo, hi, true),
+            g.span_with(x, y, len, lo, hi, false)
+        );
+    }
+
     #[test]
     fn area_recip_matches_i128(
         num in any::<i64>(), nshift in 2u32..64, den in any::<i32>(), dshift in 0u32..32,

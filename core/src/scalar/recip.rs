@@ -32,10 +32,19 @@ const RECIP_SEED: [u16; 256] = {
 #[inline]
 pub(crate) fn recip62(d: u32) -> u64 {
     let d = d.clamp(1 << 30, (1 << 31) - 1);
-    let mut x = recip62_floor(d);
+    let mut x = first_step(d);
+    // Second step in 64-bit arithmetic: x ≤ 2^62/d, so d·x ≤ 2^62 and
+    // e ≥ 0; x is within 2^−14 of the reciprocal, so e >> 22 < 2^32 and
+    // the product fits u64. A Newton step from below stays at or below
+    // the reciprocal (x·(2 − d·x/2^62) ≤ 2^62/d), and truncation only
+    // lowers it. (Written as in `recip62_floor`, this copy, out of line
+    // in the perspective-texture span loop, cost about 30 instructions
+    // more per call on ARMv6-M: the corridor frame 37.2 M -> 39.5 M.)
+    let two62 = 1u64 << 62;
+    let e = two62 - mul_u32_u64(d, x);
+    x += mul_u32_u64((e >> 22) as u32, x) >> 40;
     // Now 2^62/d − x is a few units at most: step up to the ceiling,
     // branch-free (LLVM turns an early-exit loop into a 64-bit division).
-    let two62 = 1u64 << 62;
     let mut p = mul_u32_u64(d, x);
     for _ in 0..4 {
         let below = (p < two62) as u64;
@@ -45,30 +54,18 @@ pub(crate) fn recip62(d: u32) -> u64 {
     x
 }
 
-/// [`recip62`] before its unit steps: at or below `2^62 / d` and within
-/// a few units of it, for `d` in `[2^30, 2^31)` (other `d` are clamped
-/// into the range). For callers that check their quotients against the
-/// divisor anyway (`perspective16`): they can take the last units there.
+/// [`recip62`] before its unit steps: at or below `2^62 / d` and at most
+/// 3 units below its floor, for `d` in `[2^30, 2^31)` (other `d` are
+/// clamped into the range; both bounds are checked for every `d` by
+/// `recip62_exhaustive`). For callers that check their quotients against
+/// the divisor anyway (`perspective16`): they take the last units there.
 #[inline]
 pub(crate) fn recip62_floor(d: u32) -> u64 {
     let d = d.clamp(1 << 30, (1 << 31) - 1);
-    let s0 = RECIP_SEED[((d >> 22) & 0xff) as usize] as u32;
-    // First Newton step in 32-bit arithmetic (ARMv6-M has only a
-    // 32×32→32 multiply): p = d·s0/2^15 from d's two 15/16-bit halves (the
-    // seed is below 2^24/(d >> 22), so d·s0 < 2^46 and p < 2^31), e its
-    // shortfall from 2^31 (below 2^31/128), then x = s0·2^16·(1 + e/2^31).
-    // The products fit u32. Rounding can leave x a few units above the
-    // reciprocal, which is why it steps back 8 units (2^−29 of it).
-    let p = (d >> 15) * s0 + (((d & 0x7fff) * s0) >> 15);
-    let e = (1u32 << 31).saturating_sub(p);
-    let x = ((s0 as u64) << 16) + ((s0 * (e >> 8)) >> 7) as u64 - 8;
-    // Second step in 64-bit arithmetic: x ≤ 2^62/d, so d·x ≤ 2^62 and
-    // e ≥ 0; x is within 2^−14 of the reciprocal, so e >> 22 < 2^32 and
-    // the product fits u64. A Newton step from below stays at or below
-    // the reciprocal (x·(2 − d·x/2^62) ≤ 2^62/d), and truncation only
-    // lowers it.
-    // e >> 22 from the product's halves: written as one 64-bit
-    // subtraction, LLVM multiplied by a 54-bit constant instead
+    let x = first_step(d);
+    // The second step as in `recip62`, with e >> 22 formed from the
+    // product's halves: inlined into the perspective projection, the
+    // 64-bit subtraction became a multiply by a 54-bit constant
     // (`__aeabi_lmul`, about 40 instructions on ARMv6-M).
     let p = mul_u32_u64(d, x);
     let (lo, hi) = (p as u32, (p >> 32) as u32);
@@ -76,6 +73,22 @@ pub(crate) fn recip62_floor(d: u32) -> u64 {
     let e_hi = (1u32 << 30).wrapping_sub(hi).wrapping_sub(borrow as u32);
     let e22 = (e_hi << 10) | (e_lo >> 22);
     x + (mul_u32_u64(e22, x) >> 40)
+}
+
+/// The seed and first Newton step of [`recip62`] for `d` in
+/// `[2^30, 2^31)`: at or below `2^62 / d`, within 2^−14 of it.
+#[inline(always)]
+fn first_step(d: u32) -> u64 {
+    let s0 = RECIP_SEED[((d >> 22) & 0xff) as usize] as u32;
+    // In 32-bit arithmetic (ARMv6-M has only a 32×32→32 multiply):
+    // p = d·s0/2^15 from d's two 15/16-bit halves (the seed is below
+    // 2^24/(d >> 22), so d·s0 < 2^46 and p < 2^31), e its shortfall from
+    // 2^31 (below 2^31/128), then x = s0·2^16·(1 + e/2^31). The products
+    // fit u32. Rounding can leave x a few units above the reciprocal,
+    // which is why it steps back 8 units (2^−29 of it).
+    let p = (d >> 15) * s0 + (((d & 0x7fff) * s0) >> 15);
+    let e = (1u32 << 31).saturating_sub(p);
+    ((s0 as u64) << 16) + ((s0 * (e >> 8)) >> 7) as u64 - 8
 }
 
 /// `a·b` for a product known to fit `u64` (here `b` < 2^33), as one

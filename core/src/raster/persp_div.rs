@@ -24,12 +24,21 @@ use crate::scalar::recip62;
 pub(crate) fn divide(v: &[i32; 3]) -> (i64, i64) {
     // q in [1, 2^31); s in [0, 30].
     let q = v[2].max(1) as u32;
-    let s = q.leading_zeros() - 1;
+    let s = crate::scalar::normalize_shift(q);
     let r = recip62(q << s);
     let sh = 62 - PERSPECTIVE_Q_BITS - s;
     let one = |x: i32| -> i64 {
-        // |x| ≤ 2^31 and r ≤ 2^32: the product is below 2^63 (u64).
-        let m = ((x.unsigned_abs() as u64) * r) >> sh;
+        // |x| ≤ 2^31 and r ≤ 2^32: the product is below 2^63 (u64). As a
+        // 32×32→64 multiply (r = 2^32 exactly is a shift) and a shift of
+        // 32-bit halves: on ARMv6-M a u64 product and a variable u64
+        // shift are library calls (`__aeabi_lmul`, `__aeabi_llsr`).
+        let a = x.unsigned_abs();
+        let p = if r >> 32 != 0 {
+            (a as u64) << 32
+        } else {
+            crate::scalar::widening_mul_u32(a, r as u32)
+        };
+        let m = crate::scalar::shr_u64(p, sh);
         // m < 2^55 (sh ≥ 8), so it fits i64 either way.
         if x < 0 { -(m as i64) } else { m as i64 }
     };

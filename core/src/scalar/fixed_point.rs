@@ -262,6 +262,20 @@ pub(crate) fn widening_mul_u32(a: u32, b: u32) -> u64 {
     }
 }
 
+/// `p >> sh` (`sh < 64`) by shifts of 32-bit halves: a variable 64-bit
+/// shift is a library call (`__aeabi_llsr`) on ARMv6-M.
+#[inline(always)]
+pub(crate) fn shr_u64(p: u64, sh: u32) -> u64 {
+    let (lo, hi) = (p as u32, (p >> 32) as u32);
+    if sh >= 32 {
+        (hi >> (sh - 32)) as u64
+    } else if sh == 0 {
+        p
+    } else {
+        (((hi >> sh) as u64) << 32) | ((lo >> sh) | (hi << (32 - sh))) as u64
+    }
+}
+
 /// `p >> sh` (`sh < 64`) if it is below 2^32, else `None`, by shifts of
 /// 32-bit halves: a variable 64-bit shift is a library call
 /// (`__aeabi_llsr`) on ARMv6-M.
@@ -337,7 +351,7 @@ pub(crate) fn perspective16(x: i32, y: i32, z: i32, f: i32) -> Option<(i32, i32,
 /// count-leading-zeros instruction (`__clzsi2` is a call of about 30
 /// instructions).
 #[inline(always)]
-fn normalize_shift(d: u32) -> u32 {
+pub(crate) fn normalize_shift(d: u32) -> u32 {
     let (mut d, mut s) = (d, 0);
     macro_rules! step {
         ($k:literal) => {

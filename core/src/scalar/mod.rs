@@ -25,7 +25,9 @@
 //!   [`Scalar::is_finite`].
 
 mod fixed_point;
-pub(crate) use fixed_point::{shr_to_u32, widening_mul, widening_mul_u32};
+pub(crate) use fixed_point::{
+    normalize_shift, shr_to_u32, shr_u64, widening_mul, widening_mul_u32,
+};
 mod float;
 mod float_math;
 pub(crate) mod predicates;

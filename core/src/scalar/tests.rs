@@ -458,6 +458,25 @@ fn recip62_is_the_exact_ceiling() {
     }
 }
 
+#[test]
+fn normalize_shift_is_leading_zeros_less_one() {
+    use super::fixed_point::normalize_shift;
+    let mut ds: Vec<u32> = Vec::new();
+    for k in 0..31 {
+        ds.extend([1u32 << k, (1u32 << k) | 1, (2u32 << k) - 1]);
+    }
+    let mut x = 0x9e37_79b9_u32;
+    for _ in 0..10_000 {
+        x ^= x << 13;
+        x ^= x >> 17;
+        x ^= x << 5;
+        ds.push((x >> (x % 32)).clamp(1, (1 << 31) - 1));
+    }
+    for d in ds {
+        assert_eq!(normalize_shift(d), d.leading_zeros() - 1, "d = {d}");
+    }
+}
+
 /// `perspective16` against an exact i128 oracle of the general route's
 /// roundings (quotients half away from zero, products half up), and it
 /// answers throughout the range its doc promises one step for.
@@ -739,6 +758,11 @@ fn shr_to_u32_is_the_64_bit_shift() {
         for sh in 0..64 {
             let want = u32::try_from(p >> sh).ok();
             assert_eq!(shr_to_u32(p, sh), want, "p = {p:#x}, sh = {sh}");
+            assert_eq!(
+                super::fixed_point::shr_u64(p, sh),
+                p >> sh,
+                "p = {p:#x}, sh = {sh}"
+            );
         }
     }
 }

@@ -739,7 +739,8 @@ fn dot16_small_equals_the_generic_dot() {
 }
 
 /// `shr_to_u32` is `p >> sh` when that is below 2^32 and `None`
-/// otherwise, for every shift and values at the boundaries.
+/// otherwise, and `shr_u64` is `p >> sh`, for every shift and values at
+/// the boundaries.
 #[test]
 fn shr_to_u32_is_the_64_bit_shift() {
     use super::fixed_point::shr_to_u32;

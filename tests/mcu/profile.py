@@ -53,7 +53,7 @@ STAGES = [
     ("clipping", r"::project_polygon$|sightline::pipeline::clip::"),
     ("set-up", r"Gradient::new(::\{\{closure\}\})?$|EdgeStepper(32)?::new$|raster::edge::first_center$|raster::gradient::cross(::\{\{closure\}\})?$"),
     ("edges", r"sightline::raster::fill_polygon(::\{\{closure\}\})?$|EdgeStepper(32)?::step$"),
-    ("spans", r"Gradient::span$"),
+    ("spans", r"Gradient::span(_with)?$"),
     ("pixels", r"raster::depth::fused_run$|DepthTest>::test_write$|DepthBuffer<K>::write_passing(::\{\{closure\}\})?$|Layout::span_exact$|::span_mut$|::exact_span_mut$|::clipped_span_mut$|SpanShader<.*>::span$|raster::texture::"),
 ]
 ORDER = [s for s, _ in STAGES] + ["other"]

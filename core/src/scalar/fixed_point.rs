@@ -265,6 +265,14 @@ pub(crate) fn widening_mul_u32(a: u32, b: u32) -> u64 {
 /// `p >> sh` (`sh < 64`) by shifts of 32-bit halves: a variable 64-bit
 /// shift is a library call (`__aeabi_llsr`) on ARMv6-M.
 #[inline(always)]
+#[cfg(any(
+    test,
+    all(
+        feature = "perspective",
+        target_arch = "arm",
+        not(target_has_atomic = "ptr")
+    )
+))]
 pub(crate) fn shr_u64(p: u64, sh: u32) -> u64 {
     let (lo, hi) = (p as u32, (p >> 32) as u32);
     if sh >= 32 {

@@ -25,9 +25,19 @@
 //!   [`Scalar::is_finite`].
 
 mod fixed_point;
-pub(crate) use fixed_point::{
-    normalize_shift, shr_to_u32, shr_u64, widening_mul, widening_mul_u32,
-};
+// For the perspective divide on ARMv6-M (`raster::persp_div`).
+#[cfg(all(
+    feature = "perspective",
+    target_arch = "arm",
+    not(target_has_atomic = "ptr")
+))]
+pub(crate) use fixed_point::normalize_shift;
+#[cfg(all(
+    feature = "perspective",
+    any(test, all(target_arch = "arm", not(target_has_atomic = "ptr")))
+))]
+pub(crate) use fixed_point::shr_u64;
+pub(crate) use fixed_point::{shr_to_u32, widening_mul, widening_mul_u32};
 mod float;
 mod float_math;
 pub(crate) mod predicates;

@@ -191,7 +191,10 @@ impl Gradient {
                 && gy.unsigned_abs() < lim as u64
                 && a[0].unsigned_abs() < 1 << 52,
             narrow: gx.unsigned_abs() < 1 << 31 && gy.unsigned_abs() < 1 << 31,
-            tiny: gx.unsigned_abs() < 1 << 22
+            // Never on 64-bit hosts outside tests (see `span_with`'s
+            // caller; the tests compare both routes there too).
+            tiny: (cfg!(test) || !cfg!(target_pointer_width = "64"))
+                && gx.unsigned_abs() < 1 << 22
                 && gy.unsigned_abs() < 1 << 22
                 && (a[0].unsigned_abs() << EXTRA) < 1 << 33,
         }

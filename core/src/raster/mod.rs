@@ -334,7 +334,10 @@ where
                 }
                 let (x, len) = (x0, (x1 - x0) as u32);
                 let (z, dz) = if Z::ENABLED {
-                    zgrad.span_with(x, y, len, 0, zmax, true)
+                    // Not on 64-bit hosts, where a 64-bit product is one
+                    // instruction (x86-64 W1: 3.71 M instructions with it,
+                    // 3.61 M without).
+                    zgrad.span_with(x, y, len, 0, zmax, !cfg!(target_pointer_width = "64"))
                 } else {
                     (0, 0)
                 };

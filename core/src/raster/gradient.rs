@@ -36,12 +36,12 @@ pub(super) struct Gradient {
     /// `|gx|, |gy| < 2^31` (and so `|step| < 2^27`): on the `small` path
     /// every product is then a 32×32→64 multiply.
     narrow: bool,
-    /// `|gx|, |gy| < 2^22` and `|base| < 2^33` (depths and intensities of
-    /// all but the steepest polygons): for a span starting within ±2^9
-    /// (32 pixels) of the origin (28.4) and shorter than 2^9 pixels, each
-    /// product is a 32-bit multiply, the value below 2^34 and the span's
-    /// start and end within i32.
-    tiny: bool,
+    /// `a₀` when it is within ±2^28.
+    a0: i32,
+    /// `⌊max(|gx|, |gy|) / 2^16⌋ + 1` when the plane is `narrow` and
+    /// `|a₀| < 2^28`, else 2^15: what [`Self::fits`] weighs against a
+    /// polygon's extent.
+    reach: u32,
 }
 
 /// The three vertices the planes are fitted through: positions (28.4),
@@ -176,6 +176,7 @@ impl Gradient {
         let gx = g(nx);
         let gy = g(ny);
         let lim = 1i64 << 32;
+        let narrow = gx.unsigned_abs() < 1 << 31 && gy.unsigned_abs() < 1 << 31;
         Self {
             base: a[0] << EXTRA,
             gx,
@@ -190,13 +191,13 @@ impl Gradient {
             small: gx.unsigned_abs() < lim as u64
                 && gy.unsigned_abs() < lim as u64
                 && a[0].unsigned_abs() < 1 << 52,
-            narrow: gx.unsigned_abs() < 1 << 31 && gy.unsigned_abs() < 1 << 31,
-            // Never on 64-bit hosts outside tests (see `span_with`'s
-            // caller; the tests compare both routes there too).
-            tiny: (cfg!(test) || !cfg!(target_pointer_width = "64"))
-                && gx.unsigned_abs() < 1 << 22
-                && gy.unsigned_abs() < 1 << 22
-                && (a[0].unsigned_abs() << EXTRA) < 1 << 33,
+            narrow,
+            a0: a[0] as i32,
+            reach: if narrow && a[0].unsigned_abs() < 1 << 28 {
+                (gx.unsigned_abs().max(gy.unsigned_abs()) >> 16) as u32 + 1
+            } else {
+                1 << 15
+            },
         }
     }
 
@@ -212,25 +213,6 @@ impl Gradient {
     /// `hi − lo` must be below 2^31 so that the step fits in i32.
     #[inline(always)]
     pub(super) fn span(&self, x: i32, y: i32, len: u32, lo: i32, hi: i32) -> (i32, i32) {
-        self.span_with(x, y, len, lo, hi, false)
-    }
-
-    /// [`Self::span`], trying the 32-bit route for `tiny` planes first
-    /// when `try_tiny` (the same values). The depth plane takes it; the
-    /// varyings do not: in the Gouraud scan converter the extra route cost
-    /// more in register spills around the span than it saved (W2 on
-    /// ARMv6-M: 9.03 M instructions with the depth plane alone taking it,
-    /// 9.44 M with the varyings too, 9.18 M with neither).
-    #[inline(always)]
-    pub(super) fn span_with(
-        &self,
-        x: i32,
-        y: i32,
-        len: u32,
-        lo: i32,
-        hi: i32,
-        try_tiny: bool,
-    ) -> (i32, i32) {
         let n = len.saturating_sub(1) as i64;
         // One pixel is 16 units of 28.4: step = gx·16 >> EXTRA, rounded.
         let step = if n == 0 { 0 } else { self.step };
@@ -247,25 +229,6 @@ impl Gradient {
             // clipped to the target): every product is a 32×32→64 multiply.
             let px = x * 16 + 8 - self.x0;
             let py = y * 16 + 8 - self.y0;
-            if try_tiny
-                && self.tiny
-                && px.unsigned_abs() < 1 << 9
-                && py.unsigned_abs() < 1 << 9
-                && n < 1 << 9
-            {
-                // See `tiny`: |gx·px|, |gy·py| < 2^31, |v| < 2^34, so
-                // |start| < 2^26; |step| < 2^18 and n < 2^9, so the end
-                // is within ±2^28. The same values as below, in 32-bit
-                // multiplies (ARMv6-M: two instead of eight, and 32-bit
-                // compares).
-                let v = self.base + (self.gx as i32 * px) as i64 + (self.gy as i32 * py) as i64;
-                let start = ((v + (1 << (EXTRA - 1))) >> EXTRA) as i32;
-                let end = start + step as i32 * n as i32;
-                if start >= lo && start <= hi && end >= lo && end <= hi {
-                    return (start, step as i32);
-                }
-                return clamped(start as i64, end as i64, n, lo as i64, hi as i64);
-            }
             let mul = crate::scalar::widening_mul;
             let v = self.base + mul(self.gx as i32, px) + mul(self.gy as i32, py);
             let start = (v + (1 << (EXTRA - 1))) >> EXTRA;
@@ -279,6 +242,49 @@ impl Gradient {
             return (start as i32, step as i32);
         }
         clamped(start, end, n, lo64, hi64)
+    }
+
+    /// Whether [`Self::span_tiny`] gives this plane's spans for a polygon
+    /// whose every vertex lies within `ext` (28.4, per coordinate) of the
+    /// basis origin: `max(|gx|, |gy|)·ext < 2^30`, tested as
+    /// `reach·ext < 2^14` (`reach` rounds the gradient's magnitude up to
+    /// a multiple of 2^16; with `ext < 2^14` the product is below 2^29).
+    /// `ext` is nonzero for a polygon of nonzero area, the only kind
+    /// scanned (at `ext = 0` a plane that is not `narrow` would pass).
+    #[inline(always)]
+    pub(super) fn fits(&self, ext: u32) -> bool {
+        ext < 1 << 14 && self.reach * ext < 1 << 14
+    }
+
+    /// [`Self::span`] in 32-bit arithmetic, for a plane that [`fits`] the
+    /// polygon: `(px, py)` is the span's first pixel center relative to
+    /// the origin (`x·16 + 8 − x₀`, likewise for y; the same for every
+    /// plane of the polygon) and `n` its length less one.
+    ///
+    /// Pixel centers inside the polygon lie within its bounding box, so
+    /// `|px|, |py| ≤ ext` and `n ≤ 2·ext/16`. Then
+    /// `|gx·px| + |gy·py| + 2^7 < 2^31` (each product below
+    /// `(2^14 − 1)·2^16`) and, since `base = a₀·2^EXTRA`,
+    /// `⌊(base + s)/2^EXTRA⌋ = a₀ + ⌊s/2^EXTRA⌋`: the start is the general
+    /// route's, below 2^28 + 2^23 in magnitude, and `|step·n| < 2^24`
+    /// (`|step| ≤ m/16 + 1` for `m = max(|gx|, |gy|)`, `m·ext < 2^30`)
+    /// keeps the end within i32. ARMv6-M: three 32-bit multiplies and
+    /// 32-bit compares per plane instead of three four-multiply widening
+    /// products and 64-bit compares.
+    ///
+    /// [`fits`]: Self::fits
+    #[inline(always)]
+    pub(super) fn span_tiny(&self, px: i32, py: i32, n: i32, lo: i32, hi: i32) -> (i32, i32) {
+        let step = if n == 0 { 0 } else { self.step as i32 };
+        let s = (self.gx as i32) * px + (self.gy as i32) * py + (1 << (EXTRA - 1));
+        let start = self.a0 + (s >> EXTRA);
+        let end = start + step * n;
+        // `lo ≤ v ≤ hi` as one unsigned compare (`hi − lo < 2^31`).
+        let width = hi.wrapping_sub(lo) as u32;
+        if start.wrapping_sub(lo) as u32 <= width && end.wrapping_sub(lo) as u32 <= width {
+            return (start, step);
+        }
+        clamped(start as i64, end as i64, n as i64, lo as i64, hi as i64)
     }
 }
 

@@ -315,6 +315,35 @@ where
     let zmax = ((DepthKey::MAX as i32) << DEPTH_FRAC_BITS) | ((1 << DEPTH_FRAC_BITS) - 1);
     let (lo, hi) = Sh::RANGE;
 
+    // Triangles (most of a mesh) whose coordinates allow 32-bit edges (see
+    // `EdgeStepper32`): the long edge top→bottom against the short edges
+    // top→mid and mid→bottom, no chain walking. These are the edges the
+    // chains would take, set up with the same rows, and an edge's value on
+    // a row does not depend on where its walk started (see `edge`), so the
+    // spans are identical. Everything else (polygons, and triangles beyond
+    // ±`SMALL_COORD_LIMIT`, which no viewport below 992 pixels produces)
+    // walks the chains with 64-bit edges: one copy of the span code less.
+    let small_triangle = match verts {
+        [a, b, c] if reach <= edge::SMALL_COORD_LIMIT as u32 => Some([a, b, c]),
+        _ => None,
+    };
+    // Every plane by the 32-bit route ([`Gradient::span_tiny`]) when each
+    // fits this triangle's extent around the basis origin (vertex 0): the
+    // same values as the general route, decided once per triangle. Not on
+    // 64-bit hosts, where a 64-bit product is one instruction.
+    let tiny = (cfg!(test) || !cfg!(target_pointer_width = "64"))
+        && match small_triangle {
+            Some([a, b, c]) => {
+                let d = |p: &ScreenVertex<VARYINGS>| {
+                    (p.x - a.x).unsigned_abs().max((p.y - a.y).unsigned_abs())
+                };
+                let ext = d(b).max(d(c));
+                (!Z::ENABLED || zgrad.fits(ext))
+                    && (solid.is_some() || vgrad.iter().all(|g| g.fits(ext)))
+            }
+            None => false,
+        };
+
     // One span: `[min(xa, xb), max(xa, xb))` of row `y`, scissored. The
     // same ceil formula serves left and right edges (first center at or
     // right of the edge), so for convex input min/max is exactly
@@ -333,21 +362,33 @@ where
                     break 'span false;
                 }
                 let (x, len) = (x0, (x1 - x0) as u32);
-                let (z, dz) = if Z::ENABLED {
-                    // Not on 64-bit hosts, where a 64-bit product is one
-                    // instruction (x86-64 W1: 3.71 M instructions with it,
-                    // 3.61 M without).
-                    zgrad.span_with(x, y, len, 0, zmax, !cfg!(target_pointer_width = "64"))
-                } else {
-                    (0, 0)
-                };
-                // The varyings at the span's first pixel and their steps:
-                // one set-up for the fused write and the runs.
+                // Depth, and the varyings at the span's first pixel with
+                // their steps: one set-up for the fused write and the runs.
+                let (mut z, mut dz) = (0, 0);
                 let mut start = [0i32; VARYINGS];
                 let mut step = [0i32; VARYINGS];
-                if solid.is_none() {
-                    for k in 0..VARYINGS {
-                        (start[k], step[k]) = vgrad[k].span(x, y, len, lo, hi);
+                if tiny {
+                    // The first pixel center relative to the basis origin,
+                    // shared by every plane.
+                    let px = x * 16 + 8 - basis.p[0].0;
+                    let py = y * 16 + 8 - basis.p[0].1;
+                    let n = len as i32 - 1;
+                    if Z::ENABLED {
+                        (z, dz) = zgrad.span_tiny(px, py, n, 0, zmax);
+                    }
+                    if solid.is_none() {
+                        for k in 0..VARYINGS {
+                            (start[k], step[k]) = vgrad[k].span_tiny(px, py, n, lo, hi);
+                        }
+                    }
+                } else {
+                    if Z::ENABLED {
+                        (z, dz) = zgrad.span(x, y, len, 0, zmax);
+                    }
+                    if solid.is_none() {
+                        for k in 0..VARYINGS {
+                            (start[k], step[k]) = vgrad[k].span(x, y, len, lo, hi);
+                        }
                     }
                 }
                 // The varyings `i` pixels into the span.
@@ -385,18 +426,6 @@ where
     }
 
     let mut drawn = false;
-    // Triangles (most of a mesh) whose coordinates allow 32-bit edges (see
-    // `EdgeStepper32`): the long edge top→bottom against the short edges
-    // top→mid and mid→bottom, no chain walking. These are the edges the
-    // chains would take, set up with the same rows, and an edge's value on
-    // a row does not depend on where its walk started (see `edge`), so the
-    // spans are identical. Everything else (polygons, and triangles beyond
-    // ±`SMALL_COORD_LIMIT`, which no viewport below 992 pixels produces)
-    // walks the chains with 64-bit edges: one copy of the span code less.
-    let small_triangle = match verts {
-        [a, b, c] if reach <= edge::SMALL_COORD_LIMIT as u32 => Some([a, b, c]),
-        _ => None,
-    };
     if let Some([v0, v1, v2]) = small_triangle {
         // Sorted by reference (swapping the vertices themselves moved
         // their varyings too).

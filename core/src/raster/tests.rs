@@ -743,26 +743,45 @@ proptest! {
         prop_assert_eq!(std::format!("{fast:?}"), std::format!("{general:?}"));
     }
 
-    /// A plane's span values by the 32-bit route for tiny planes equal
-    /// the general route's, clamping included.
+    /// A plane's span values by the 32-bit route equal the general
+    /// route's, clamping included, for every span of a triangle that the
+    /// plane fits: first pixel centers within the triangle's extent
+    /// around the origin, lengths up to twice that extent. (With overflow
+    /// checks on, as in `cargo test`, a bound too loose in `fits` panics
+    /// in `span_tiny`.)
     #[test]
-    fn tiny_gradient_spans_match_general(
-        p in proptest::array::uniform6(-(1i32 << 9)..=1 << 9),
-        a in proptest::array::uniform3(0i64..1 << 24),
-        x in -40i32..40, y in -40i32..40, len in 1u32..600,
-        lo in 0i32..1 << 20, width in 0i32..1 << 24,
+    fn tiny_spans_match_general(
+        p in proptest::array::uniform6(-(1i32 << 11)..=1 << 11),
+        a in proptest::array::uniform3(any::<i32>()),
+        shift in 0u32..32,
+        kx in any::<u32>(), ky in any::<u32>(), kn in any::<u32>(),
+        lo in -(1i32 << 29)..1 << 29, width in 0i32..1 << 30,
     ) {
         use super::gradient::{Basis, Gradient};
         let p = [(p[0], p[1]), (p[2], p[3]), (p[4], p[5])];
         let area2 = crate::scalar::widening_mul(p[1].0 - p[0].0, p[2].1 - p[0].1)
             - crate::scalar::widening_mul(p[1].1 - p[0].1, p[2].0 - p[0].0);
         prop_assume!(area2 != 0);
+        let a = a.map(|v| (v >> shift) as i64);
         let g = Gradient::new(&Basis { p, area2, recip: None, short: true }, a);
+        let (x0, y0) = p[0];
+        let d = |q: (i32, i32)| (q.0 - x0).unsigned_abs().max((q.1 - y0).unsigned_abs());
+        let ext = d(p[1]).max(d(p[2]));
+        prop_assume!(g.fits(ext));
+        // A pixel column whose center is within ±ext of the origin.
+        let e = ext as i32;
+        let pick = |o: i32, k: u32| {
+            let (first, last) = ((o - 8 - e).div_euclid(16) + 1, (o - 8 + e).div_euclid(16));
+            (first <= last).then(|| first + (k % (last - first + 1) as u32) as i32)
+        };
+        let (Some(x), Some(y)) = (pick(x0, kx), pick(y0, ky)) else {
+            return Ok(());
+        };
+        let n = (kn % (2 * ext / 16 + 1)) as i32;
         let hi = lo + width;
-        prop_assert_eq!(
-            g.span_with(x, y, len, lo, hi, true),
-            g.span_with(x, y, len, lo, hi, false)
-        );
+        let (px, py) = (x * 16 + 8 - x0, y * 16 + 8 - y0);
+        prop_assert!(px.abs() <= e && py.abs() <= e);
+        prop_assert_eq!(g.span_tiny(px, py, n, lo, hi), g.span(x, y, n as u32 + 1, lo, hi));
     }
 
     #[test]

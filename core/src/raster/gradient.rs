@@ -10,7 +10,7 @@
 //! rows before it (bands render bit-identically) and costs one
 //! multiply-add per quantity per span.
 
-use crate::scalar::recip62;
+use crate::scalar::{normalize_shift, recip62_floor};
 use crate::scalar::{shr_to_u32, widening_mul_u32};
 
 /// Extra fractional bits kept in the gradients beyond the values' own.
@@ -59,66 +59,78 @@ pub(super) struct Basis {
     pub(super) short: bool,
 }
 
-/// `|A|` (below 2^31) with `⌈2^62/d'⌉`, `d' = |A|·2^s` normalized into
-/// `[2^30, 2^31)`: one reciprocal ([`recip62`]) shared by every gradient
-/// of a polygon, so each quotient is two 32×32→64 multiplies and a
-/// check instead of a 64-bit library division (about 280 instructions on
-/// ARMv6-M).
+/// `|A|` (in `[4, 2^31)`) with `r ≈ 2^62/d'`, `d' = |A|·2^s` normalized
+/// into `[2^30, 2^31)`: one reciprocal shared by every gradient of a
+/// polygon, so each quotient is one or two 32×32→64 multiplies and a
+/// 32-bit check instead of a 64-bit library division (about 320
+/// instructions a quotient on ARMv6-M, `u64_div_rem` and the `u32_div_rem`
+/// it calls).
 ///
-/// Why one correction suffices: for `u < 2^(62−s)` the estimate
-/// `⌊u·r / 2^(62−s)⌋` lies in `[u/|A|, u/|A| + 1)` (`r` overestimates
-/// `2^62/d'` by less than one, which moves `u·r/2^(62−s)` by less than
-/// `u·2^s/2^62 < 1`), so it is `⌊u/|A|⌋` or one more, and the product
-/// with `|A|` tells which. In that range the quotient is below 2^32.
+/// `r` is [`recip62_floor`] plus 4, capped at 2^32: `recip62_floor` is at
+/// or below `R = 2^62/d'` and less than 4 below it (for every divisor:
+/// `recip62_exhaustive`), so `R < r ≤ R + 4` (the cap is at or above `R`,
+/// since `d' ≥ 2^30`). Why one correction then suffices: for
+/// `u < 2^(60−s)` the estimate `⌊u·r / 2^(62−s)⌋` lies in
+/// `[u/|A|, u/|A| + 1)` (`r − R ≤ 4` moves `u·r/2^(62−s)` by at most
+/// `4u·2^s/2^62 < 1`), so it is `⌊u/|A|⌋` or one more, and the sign of
+/// `u − e·|A|` tells which. That difference lies in `(−|A|, |A|)`, within
+/// ±2^31, so its low 32 bits decide: no widening product. In that range
+/// the quotient is below 2^30, and every quotient below 2^29 is in it.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct AreaRecip {
     d: u32,
-    /// `30 − s`: the estimate is `(u·r / 2^32) >> k`.
+    /// `30 − s` (at least 2): the estimate is `(u·r / 2^32) >> k`.
     k: u32,
+    /// In `(2^31, 2^32]`.
     r: u64,
 }
 
 impl AreaRecip {
-    /// The reciprocal of `|area2|`, if it is in `[1, 2^31)`.
+    /// The reciprocal of `|area2|`, if it is in `[4, 2^31)` (slivers of
+    /// smaller area divide).
     pub(super) fn new(area2: i64) -> Option<Self> {
         let d = area2.unsigned_abs();
-        if d == 0 || d >= 1 << 31 {
+        if !(4..1 << 31).contains(&d) {
             return None;
         }
         let d = d as u32;
-        let s = d.leading_zeros() - 1;
+        // s ≤ 28 for d ≥ 4.
+        let s = normalize_shift(d);
         Some(Self {
             d,
             k: 30 - s,
-            r: recip62(d << s),
+            r: (recip62_floor(d << s) + 4).min(1 << 32),
         })
     }
 
-    /// `⌊u / |A|⌋` when `u < 2^(32+k)` (then below 2^32), else `None`.
+    /// `⌊u / |A|⌋` when `u < 2^(30+k)` (then below 2^30), else `None`.
     #[inline]
     fn div_floor(&self, u: u64) -> Option<u64> {
         // Shifts of 32-bit halves only: a variable 64-bit shift is a
         // library call on ARMv6-M.
         let (ul, uh) = (u as u32, (u >> 32) as u32);
         let k = self.k;
-        if uh >> k != 0 {
-            return None; // u ≥ 2^(32+k)
+        if uh >> (k - 2) != 0 {
+            return None; // u ≥ 2^(30+k)
         }
-        // h = u·r / 2^32: r = 2^32 exactly (|A| a power of two) gives u;
-        // otherwise u < 2^62 and r < 2^32 keep it below 2^62 + 2^32.
-        let h = if self.r >> 32 != 0 {
-            u
+        // h = u·r / 2^32: r = 2^32 gives u; otherwise u < 2^60 and
+        // r < 2^32 keep it below 2^60 + 2^32.
+        let e = if self.r >> 32 != 0 {
+            shr_to_u32(u, k)?
         } else {
             let r = self.r as u32;
-            widening_mul_u32(uh, r) + (widening_mul_u32(ul, r) >> 32)
+            let low = (widening_mul_u32(ul, r) >> 32) as u32;
+            if uh == 0 {
+                // The common case (`u < 2^32`): one widening multiply.
+                low >> k
+            } else {
+                shr_to_u32(widening_mul_u32(uh, r) + low as u64, k)?
+            }
         };
-        // e = h >> k: ⌊u/|A|⌋ or one more, below 2^32 + 1.
-        let e = shr_to_u32(h, k)?;
-        Some(if widening_mul_u32(e, self.d) > u {
-            e - 1
-        } else {
-            e
-        } as u64)
+        // e = ⌊u/|A|⌋ or one more: u − e·|A| in (−|A|, |A|), exact in
+        // the low 32 bits read as i32.
+        let below = (ul.wrapping_sub(e.wrapping_mul(self.d)) as i32) < 0;
+        Some(u64::from(e - u32::from(below)))
     }
 
     /// [`div_round`]`(num, den)` for `den = ±|A|` and `|num| < 2^62`,

@@ -281,16 +281,16 @@ where
         p: bv.map(|v| (v.x, v.y)),
         area2: best_area,
         short: reach <= edge::SMALL_COORD_LIMIT as u32,
-        // Shared by two planes or more (four quotients: depth and a
-        // varying, or two varyings): for depth alone, two library
-        // divisions cost less than the reciprocal (W1 on ARMv6-M: 1.6 %
-        // more instructions with it, 1.5 % on the Cortex-M4F). Only where
-        // a 64-bit division is a library call: on 64-bit hosts it is one
+        // One reciprocal for every plane's two quotients, each then one
+        // or two 32×32→64 multiplies (see `AreaRecip`): W1 on ARMv6-M,
+        // depth alone, 6.65 M instructions per frame with two library
+        // divisions per plane, 6.30 M with it. Only where a 64-bit
+        // division is a library call: on 64-bit hosts it is one
         // instruction (x86-64 W2: 4.42 M instructions without the
         // reciprocal, 4.74 M with it). The quotients are the same (the
         // host/MCU frame checks compare the two routes bit for bit).
         recip: if !cfg!(target_pointer_width = "64")
-            && usize::from(Z::ENABLED) + if solid.is_none() { VARYINGS } else { 0 } >= 2
+            && (Z::ENABLED || (solid.is_none() && VARYINGS > 0))
         {
             AreaRecip::new(best_area)
         } else {

@@ -673,19 +673,22 @@ fn shifted_division_edges() {
 /// The shared area reciprocal (`AreaRecip`, the set-up's division for
 /// polygons with two planes or more) against the exact i128 quotient:
 /// whenever it answers it gives `div_round`'s value, and it answers for
-/// every quotient below 2^31 in magnitude (the claim that one correction
-/// step suffices there).
+/// every quotient below 2^29 in magnitude (the claim that one correction
+/// step suffices there) and every divisor in `[4, 2^31)`.
 fn check_area_recip(num: i64, den: i64) {
     use super::gradient::AreaRecip;
     let Some(r) = AreaRecip::new(den) else {
-        assert!(den == 0 || den.unsigned_abs() >= 1 << 31, "den = {den}");
+        assert!(
+            den.unsigned_abs() < 4 || den.unsigned_abs() >= 1 << 31,
+            "den = {den}"
+        );
         return;
     };
     let want = div_round_i128(num as i128, den as i128);
     match r.div_round(num, den) {
         Some(q) => assert_eq!(q, want, "num = {num}, den = {den}"),
         None => assert!(
-            want.unsigned_abs() >= 1 << 31,
+            want.unsigned_abs() >= 1 << 29,
             "num = {num}, den = {den}: no answer for {want}"
         ),
     }
@@ -815,7 +818,7 @@ fn area_recip_edges() {
     }
     for &den in &dens {
         let d = den.unsigned_abs() as i64;
-        // Quotients at and around 2^31 and 2^32, ties, zero, the largest
+        // Quotients at and around 2^29 to 2^32, ties, zero, the largest
         // numerators.
         let mut nums = vec![
             0i64,
@@ -828,7 +831,17 @@ fn area_recip_edges() {
             (1 << 62) - 1,
             -(1 << 62) + 1,
         ];
-        for q in [1i64 << 31, (1 << 31) - 1, 1 << 32, (1 << 32) - 1, 12345] {
+        for q in [
+            1i64 << 29,
+            (1 << 29) - 1,
+            1 << 30,
+            (1 << 30) - 1,
+            1 << 31,
+            (1 << 31) - 1,
+            1 << 32,
+            (1 << 32) - 1,
+            12345,
+        ] {
             let n = (q as i128 * d as i128).min((1 << 62) - 1) as i64;
             nums.extend([n, n - 1, n + 1, n + d / 2, n - d / 2, -n, -(n - 1)]);
         }

@@ -25,12 +25,6 @@
 //!   [`Scalar::is_finite`].
 
 mod fixed_point;
-// For the perspective divide on ARMv6-M (`raster::persp_div`).
-#[cfg(all(
-    feature = "perspective",
-    target_arch = "arm",
-    not(target_has_atomic = "ptr")
-))]
 pub(crate) use fixed_point::normalize_shift;
 #[cfg(all(
     feature = "perspective",

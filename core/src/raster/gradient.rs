@@ -38,7 +38,8 @@ pub(super) struct Gradient {
     narrow: bool,
     /// `a₀` when it is within ±2^28.
     a0: i32,
-    /// `⌊max(|gx|, |gy|) / 2^16⌋ + 1` when the plane is `narrow` and
+    /// `⌊max(|gx|, |gy|) / 2^16⌋ + 1` (at least the magnitude of either
+    /// gradient's high 16-bit half) when the plane is `narrow` and
     /// `|a₀| < 2^28`, else 2^15: what [`Self::fits`] weighs against a
     /// polygon's extent.
     reach: u32,
@@ -258,14 +259,14 @@ impl Gradient {
 
     /// Whether [`Self::span_tiny`] gives this plane's spans for a polygon
     /// whose every vertex lies within `ext` (28.4, per coordinate) of the
-    /// basis origin: `max(|gx|, |gy|)·ext < 2^30`, tested as
-    /// `reach·ext < 2^14` (`reach` rounds the gradient's magnitude up to
-    /// a multiple of 2^16; with `ext < 2^14` the product is below 2^29).
+    /// basis origin: `ext < 2^14` and `reach·ext` below 2^20 when `SPLIT`,
+    /// below 2^14 otherwise (`reach` bounds the gradient's high halves,
+    /// see `span_tiny`; with `ext < 2^14` the product cannot overflow).
     /// `ext` is nonzero for a polygon of nonzero area, the only kind
     /// scanned (at `ext = 0` a plane that is not `narrow` would pass).
     #[inline(always)]
-    pub(super) fn fits(&self, ext: u32) -> bool {
-        ext < 1 << 14 && self.reach * ext < 1 << 14
+    pub(super) fn fits<const SPLIT: bool>(&self, ext: u32) -> bool {
+        ext < 1 << 14 && self.reach * ext < if SPLIT { 1 << 20 } else { 1 << 14 }
     }
 
     /// [`Self::span`] in 32-bit arithmetic, for a plane that [`fits`] the
@@ -274,22 +275,50 @@ impl Gradient {
     /// plane of the polygon) and `n` its length less one.
     ///
     /// Pixel centers inside the polygon lie within its bounding box, so
-    /// `|px|, |py| ≤ ext` and `n ≤ 2·ext/16`. Then
-    /// `|gx·px| + |gy·py| + 2^7 < 2^31` (each product below
-    /// `(2^14 − 1)·2^16`) and, since `base = a₀·2^EXTRA`,
-    /// `⌊(base + s)/2^EXTRA⌋ = a₀ + ⌊s/2^EXTRA⌋`: the start is the general
-    /// route's, below 2^28 + 2^23 in magnitude, and `|step·n| < 2^24`
-    /// (`|step| ≤ m/16 + 1` for `m = max(|gx|, |gy|)`, `m·ext < 2^30`)
-    /// keeps the end within i32. ARMv6-M: three 32-bit multiplies and
-    /// 32-bit compares per plane instead of three four-multiply widening
+    /// `|px|, |py| ≤ ext` and `n ≤ 2·ext/16`. Each gradient splits into
+    /// 16-bit halves, `g = gₕ·2^16 + gₗ` (`gₗ` unsigned, `|gₕ| ≤ reach`),
+    /// so `gx·px + gy·py = sₕ·2^16 + sₗ` with
+    /// `sₗ = gxₗ·px + gyₗ·py` (below `2·2^16·2^14`: with the rounding
+    /// term `2^7` it fits i32) and `sₕ = gxₕ·px + gyₕ·py`
+    /// (`|sₕ| ≤ 2·reach·ext < 2^21`). Since `base = a₀·2^EXTRA` and
+    /// `2^16` is a multiple of `2^EXTRA`, the general route's
+    /// `⌊(base + sₕ·2^16 + sₗ + 2^7)/2^EXTRA⌋` is
+    /// `a₀ + sₕ·2^8 + ⌊(sₗ + 2^7)/2^EXTRA⌋`: the same start, below
+    /// `2^28 + 2^29 + 2^23` in magnitude. `|step| ≤ m/16 + 1` for
+    /// `m = max(|gx|, |gy|) < reach·2^16`, so `|step·n| < 2^29 + 2^11`
+    /// and the end stays within i32. ARMv6-M: five 32-bit multiplies and
+    /// 32-bit compares per plane instead of two four-multiply widening
     /// products and 64-bit compares.
+    ///
+    /// Without `SPLIT` (`reach·ext < 2^14`, so `m·ext < 2^30`), the whole
+    /// gradients: `|gx·px| + |gy·py| + 2^7 < 2^31`, the start is
+    /// `a₀ + ⌊(gx·px + gy·py + 2^7)/2^EXTRA⌋`, and `|step·n| < 2^24`: three
+    /// multiplies. Depths take it (their gradients are small); the
+    /// varyings, 8.16 colors whose gradients exceed 2^16 on most small
+    /// triangles, split (W2 on ARMv6-M: 7.79 M instructions per frame
+    /// with neither split, 7.63 M with the varyings split, 7.69 M with
+    /// every plane split, which cost W1 1.9 %: 6.30 M -> 6.42 M).
     ///
     /// [`fits`]: Self::fits
     #[inline(always)]
-    pub(super) fn span_tiny(&self, px: i32, py: i32, n: i32, lo: i32, hi: i32) -> (i32, i32) {
+    pub(super) fn span_tiny<const SPLIT: bool>(
+        &self,
+        px: i32,
+        py: i32,
+        n: i32,
+        lo: i32,
+        hi: i32,
+    ) -> (i32, i32) {
         let step = if n == 0 { 0 } else { self.step as i32 };
-        let s = (self.gx as i32) * px + (self.gy as i32) * py + (1 << (EXTRA - 1));
-        let start = self.a0 + (s >> EXTRA);
+        let (gx, gy) = (self.gx as i32, self.gy as i32);
+        let round = 1 << (EXTRA - 1);
+        let start = if SPLIT {
+            let high = (gx >> 16) * px + (gy >> 16) * py;
+            let low = (gx & 0xffff) * px + (gy & 0xffff) * py + round;
+            self.a0 + (high << (16 - EXTRA)) + (low >> EXTRA)
+        } else {
+            self.a0 + ((gx * px + gy * py + round) >> EXTRA)
+        };
         let end = start + step * n;
         // `lo ≤ v ≤ hi` as one unsigned compare (`hi − lo < 2^31`).
         let width = hi.wrapping_sub(lo) as u32;

@@ -338,8 +338,8 @@ where
                     (p.x - a.x).unsigned_abs().max((p.y - a.y).unsigned_abs())
                 };
                 let ext = d(b).max(d(c));
-                (!Z::ENABLED || zgrad.fits(ext))
-                    && (solid.is_some() || vgrad.iter().all(|g| g.fits(ext)))
+                (!Z::ENABLED || zgrad.fits::<false>(ext))
+                    && (solid.is_some() || vgrad.iter().all(|g| g.fits::<true>(ext)))
             }
             None => false,
         };
@@ -374,11 +374,11 @@ where
                     let py = y * 16 + 8 - basis.p[0].1;
                     let n = len as i32 - 1;
                     if Z::ENABLED {
-                        (z, dz) = zgrad.span_tiny(px, py, n, 0, zmax);
+                        (z, dz) = zgrad.span_tiny::<false>(px, py, n, 0, zmax);
                     }
                     if solid.is_none() {
                         for k in 0..VARYINGS {
-                            (start[k], step[k]) = vgrad[k].span_tiny(px, py, n, lo, hi);
+                            (start[k], step[k]) = vgrad[k].span_tiny::<true>(px, py, n, lo, hi);
                         }
                     }
                 } else {

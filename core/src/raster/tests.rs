@@ -770,7 +770,7 @@ proptest! {
         let (x0, y0) = p[0];
         let d = |q: (i32, i32)| (q.0 - x0).unsigned_abs().max((q.1 - y0).unsigned_abs());
         let ext = d(p[1]).max(d(p[2]));
-        prop_assume!(g.fits(ext));
+        prop_assume!(g.fits::<true>(ext));
         // A pixel column whose center is within ±ext of the origin.
         let e = ext as i32;
         let pick = |o: i32, k: u32| {
@@ -784,7 +784,11 @@ proptest! {
         let hi = lo + width;
         let (px, py) = (x * 16 + 8 - x0, y * 16 + 8 - y0);
         prop_assert!(px.abs() <= e && py.abs() <= e);
-        prop_assert_eq!(g.span_tiny(px, py, n, lo, hi), g.span(x, y, n as u32 + 1, lo, hi));
+        let general = g.span(x, y, n as u32 + 1, lo, hi);
+        prop_assert_eq!(g.span_tiny::<true>(px, py, n, lo, hi), general);
+        if g.fits::<false>(ext) {
+            prop_assert_eq!(g.span_tiny::<false>(px, py, n, lo, hi), general);
+        }
     }
 
     #[test]

@@ -25,6 +25,37 @@ pub struct Affine3<S> {
     pub translation: Vec3<S>,
 }
 
+/// An [`Affine3`] prepared for transforming many points
+/// ([`Affine3::for_points`]).
+#[derive(Clone, Copy, Debug)]
+pub struct PointTransform<S> {
+    affine: Affine3<S>,
+    prepared: Option<[[[i32; 3]; 3]; 3]>,
+}
+
+impl<S: Scalar> PointTransform<S> {
+    /// `M·p + t`: the transform's [`Affine3::transform_point3`].
+    #[must_use]
+    #[inline]
+    pub fn apply(&self, p: Vec3<S>) -> Vec3<S> {
+        let fast = match &self.prepared {
+            Some(m) => S::mat3_vec3_prepared(m, p.to_array()),
+            None => None,
+        };
+        let mp = match fast {
+            Some(r) => Vec3::from_array(r),
+            None => self.affine.matrix.mul_vec3(p),
+        };
+        mp + self.affine.translation
+    }
+
+    /// The transform.
+    #[must_use]
+    pub fn affine(&self) -> &Affine3<S> {
+        &self.affine
+    }
+}
+
 /// A 4×4 matrix, for projections (homogeneous w ≠ 1).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Mat4<S> {
@@ -243,6 +274,17 @@ impl<S: Scalar> Affine3<S> {
     #[must_use]
     pub fn transform_vector3(&self, v: Vec3<S>) -> Vec3<S> {
         self.matrix.mul_vec3(v)
+    }
+    /// This transform prepared for many points: [`PointTransform::apply`]
+    /// gives [`Self::transform_point3`]'s values, with the work that
+    /// depends only on the matrix done here, once (16.16 fixed point on
+    /// ARMv6-M: its range test and the halves of its entries).
+    #[must_use]
+    pub fn for_points(&self) -> PointTransform<S> {
+        PointTransform {
+            affine: *self,
+            prepared: S::mat3_prepare(&self.matrix.m),
+        }
     }
     /// `self · rhs`: the composition that applies `rhs` first.
     #[must_use]

@@ -7,7 +7,7 @@
 mod mat;
 mod vec;
 
-pub use mat::{Affine3, Mat3, Mat4};
+pub use mat::{Affine3, Mat3, Mat4, PointTransform};
 pub use vec::{Vec2, Vec3, Vec4};
 
 #[cfg(test)]

@@ -513,6 +513,102 @@ pub(crate) fn mat3_vec16_small(m: &[[i32; 3]; 3], v: [i32; 3]) -> Option<[i32; 3
     Some(m.map(|r| dot16_in_range3(r, v)))
 }
 
+/// `m` for many [`mat3_vec16_small`] products: `None` unless its nine
+/// entries lie in `[−2²³, 2²³)`, else each entry `a` as `[a, aₕ, aₗ]`
+/// (its high half, signed, and its low half), so that a product takes
+/// only the vector's halves.
+#[inline]
+#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
+pub(crate) fn mat3_split16(m: &[[i32; 3]; 3]) -> Option<[[[i32; 3]; 3]; 3]> {
+    const LIM: u32 = 1 << 23;
+    let bias = |x: i32| (x as u32).wrapping_add(LIM);
+    let any = m.iter().flatten().fold(0, |acc, &x| acc | bias(x));
+    if any >= 2 * LIM {
+        return None;
+    }
+    Some(m.map(split16_row))
+}
+
+/// One row's entries as `[a, aₕ, aₗ]` (see [`mat3_split16`]).
+#[inline]
+#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
+fn split16_row(r: [i32; 3]) -> [[i32; 3]; 3] {
+    r.map(|a| [a, a >> 16, a & 0xffff])
+}
+
+/// `v` for many [`dot16_small3`] products with it: `None` unless its
+/// entries lie in `[−2²³, 2²³)`.
+#[inline]
+#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
+pub(crate) fn vec3_split16(v: [i32; 3]) -> Option<[[i32; 3]; 3]> {
+    in_range16(v).then(|| split16_row(v))
+}
+
+/// Whether every entry of `v` lies in `[−2²³, 2²³)`.
+#[inline(always)]
+#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
+fn in_range16(v: [i32; 3]) -> bool {
+    const LIM: u32 = 1 << 23;
+    let bias = |x: i32| (x as u32).wrapping_add(LIM);
+    (bias(v[0]) | bias(v[1]) | bias(v[2])) < 2 * LIM
+}
+
+/// The 16-bit halves of `v`'s entries, high (signed) and low.
+#[inline(always)]
+#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
+fn halves16(v: [i32; 3]) -> ([i32; 3], [i32; 3]) {
+    // Written out, not mapped: at opt-level "s" a map over the components
+    // became a loop through the stack.
+    (
+        [v[0] >> 16, v[1] >> 16, v[2] >> 16],
+        [v[0] & 0xffff, v[1] & 0xffff, v[2] & 0xffff],
+    )
+}
+
+/// A split row times a vector given by its halves: [`dot16_in_range3`]'s
+/// value (each product is [`mul16_in_range`]'s sum, which is symmetric in
+/// its operands, with the row's halves read, not formed).
+#[inline(always)]
+#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
+fn split16_dot(r: &[[i32; 3]; 3], h: [i32; 3], l: [i32; 3]) -> i32 {
+    #[inline(always)]
+    fn p([a, ah, al]: [i32; 3], bh: i32, bl: i32) -> i32 {
+        let low = (((al as u32) * (bl as u32) + (1 << 15)) >> 16) as i32;
+        a * bh + ah * bl + low
+    }
+    p(r[0], h[0], l[0])
+        .saturating_add(p(r[1], h[1], l[1]))
+        .saturating_add(p(r[2], h[2], l[2]))
+}
+
+/// [`mat3_vec16_small`]`(m, v)` for `split = mat3_split16(m)`: the same
+/// values, `None` when an entry of `v` is out of range.
+#[inline(always)]
+#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
+pub(crate) fn mat3_split16_vec(split: &[[[i32; 3]; 3]; 3], v: [i32; 3]) -> Option<[i32; 3]> {
+    if !in_range16(v) {
+        return None;
+    }
+    let (h, l) = halves16(v);
+    Some([
+        split16_dot(&split[0], h, l),
+        split16_dot(&split[1], h, l),
+        split16_dot(&split[2], h, l),
+    ])
+}
+
+/// [`dot16_small3`]`(w, v)` for `split = vec3_split16(v)`: the same value,
+/// `None` when an entry of `w` is out of range.
+#[inline(always)]
+#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
+pub(crate) fn vec3_split16_dot(split: &[[i32; 3]; 3], w: [i32; 3]) -> Option<i32> {
+    if !in_range16(w) {
+        return None;
+    }
+    let (h, l) = halves16(w);
+    Some(split16_dot(split, h, l))
+}
+
 /// [`mul16_small`] without the range test: `a` and `b` in `[−2²³, 2²³)`.
 #[inline(always)]
 #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
@@ -789,6 +885,44 @@ impl<Frac: LeEqU32 + 'static> Scalar for Fx<Frac> {
             return mat3_vec16_small(&mb, v.map(|x| x.bits)).map(|r| r.map(Self::from_bits));
         }
         let _ = (m, v);
+        None
+    }
+    #[inline]
+    fn mat3_prepare(m: &[[Self; 3]; 3]) -> Option<[[[i32; 3]; 3]; 3]> {
+        // On ARMv6-M: the twelve-operand range test of `mat3_vec3_fast`
+        // split into the matrix's, once, and the vector's, per product.
+        #[cfg(all(target_arch = "arm", not(target_has_atomic = "ptr")))]
+        if Self::FRAC == 16 {
+            return mat3_split16(&m.map(|r| r.map(|x| x.bits)));
+        }
+        let _ = m;
+        None
+    }
+    #[inline]
+    fn dot3_prepare(v: [Self; 3]) -> Option<[[i32; 3]; 3]> {
+        #[cfg(all(target_arch = "arm", not(target_has_atomic = "ptr")))]
+        if Self::FRAC == 16 {
+            return vec3_split16(v.map(|x| x.bits));
+        }
+        let _ = v;
+        None
+    }
+    #[inline]
+    fn dot3_prepared(prepared: &[[i32; 3]; 3], w: [Self; 3]) -> Option<Self> {
+        #[cfg(all(target_arch = "arm", not(target_has_atomic = "ptr")))]
+        if Self::FRAC == 16 {
+            return vec3_split16_dot(prepared, w.map(|x| x.bits)).map(Self::from_bits);
+        }
+        let _ = (prepared, w);
+        None
+    }
+    #[inline]
+    fn mat3_vec3_prepared(prepared: &[[[i32; 3]; 3]; 3], v: [Self; 3]) -> Option<[Self; 3]> {
+        #[cfg(all(target_arch = "arm", not(target_has_atomic = "ptr")))]
+        if Self::FRAC == 16 {
+            return mat3_split16_vec(prepared, v.map(|x| x.bits)).map(|r| r.map(Self::from_bits));
+        }
+        let _ = (prepared, v);
         None
     }
     fn checked_mul(self, rhs: Self) -> Option<Self> {

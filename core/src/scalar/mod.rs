@@ -205,6 +205,47 @@ pub trait Scalar:
         None
     }
 
+    /// `m` prepared for many products by [`Self::mat3_vec3_prepared`], in
+    /// the type's own 27 words, where it has a faster route for them;
+    /// `None` otherwise. 16.16 fixed point on ARMv6-M has one: the range
+    /// test of the matrix and the 16-bit halves of its entries, once.
+    #[must_use]
+    #[inline]
+    fn mat3_prepare(m: &[[Self; 3]; 3]) -> Option<[[[i32; 3]; 3]; 3]> {
+        let _ = m;
+        None
+    }
+
+    /// [`Self::mat3_vec3_fast`]`(m, v)` for the `m` that
+    /// [`Self::mat3_prepare`] prepared into `prepared`: the same values,
+    /// or `None` where that gives `None`.
+    #[must_use]
+    #[inline]
+    fn mat3_vec3_prepared(prepared: &[[[i32; 3]; 3]; 3], v: [Self; 3]) -> Option<[Self; 3]> {
+        let _ = (prepared, v);
+        None
+    }
+
+    /// `v` prepared for many dot products by [`Self::dot3_prepared`], in
+    /// the type's own nine words, where it has a faster route for them;
+    /// `None` otherwise (as [`Self::mat3_prepare`], for one row).
+    #[must_use]
+    #[inline]
+    fn dot3_prepare(v: [Self; 3]) -> Option<[[i32; 3]; 3]> {
+        let _ = v;
+        None
+    }
+
+    /// `w · v` as [`Self::dot_fast`]`(w, v)` gives it, for the `v` that
+    /// [`Self::dot3_prepare`] prepared into `prepared`: the same value, or
+    /// `None` where that gives `None`.
+    #[must_use]
+    #[inline]
+    fn dot3_prepared(prepared: &[[i32; 3]; 3], w: [Self; 3]) -> Option<Self> {
+        let _ = (prepared, w);
+        None
+    }
+
     /// The smaller of two values (`other` if they are unordered).
     ///
     /// Named `min_of` rather than `min` on purpose: the fixed-point types

@@ -769,15 +769,22 @@ fn shr_to_u32_is_the_64_bit_shift() {
 }
 
 /// `mat3_vec16_small` is the three rows' `dot16_small3` whenever it
-/// answers, and answers exactly when every operand is inside the limit.
+/// answers, and answers exactly when every operand is inside the limit;
+/// the prepared routes (`mat3_split16` then `mat3_split16_vec`, and
+/// `vec3_split16` then `vec3_split16_dot`, with the row as the prepared
+/// operand: `dot16_small3(v, row)`) give the same answers.
 #[test]
 fn mat3_vec16_small_equals_three_dots() {
-    use super::fixed_point::{dot16_small3, mat3_vec16_small};
+    use super::fixed_point::{
+        dot16_small3, mat3_split16, mat3_split16_vec, mat3_vec16_small, vec3_split16,
+        vec3_split16_dot,
+    };
     let lim = 1i32 << 23;
     let inside = |x: &i32| (-lim..lim).contains(x);
     let check = |m: [[i32; 3]; 3], v: [i32; 3]| {
         let all_in = v.iter().all(inside) && m.iter().flatten().all(inside);
-        match mat3_vec16_small(&m, v) {
+        let got = mat3_vec16_small(&m, v);
+        match got {
             Some(r) => {
                 assert!(all_in, "{m:?}·{v:?} answered outside the limit");
                 for i in 0..3 {
@@ -785,6 +792,12 @@ fn mat3_vec16_small_equals_three_dots() {
                 }
             }
             None => assert!(!all_in, "{m:?}·{v:?} refused inside the limit"),
+        }
+        let prepared = mat3_split16(&m).and_then(|s| mat3_split16_vec(&s, v));
+        assert_eq!(prepared, got, "prepared {m:?}·{v:?}");
+        for row in m {
+            let dot = vec3_split16(row).and_then(|s| vec3_split16_dot(&s, v));
+            assert_eq!(dot, dot16_small3(v, row), "prepared {v:?}·{row:?}");
         }
     };
     let big = lim - 1;

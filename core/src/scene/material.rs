@@ -112,9 +112,47 @@ impl<S: Scalar> PreparedLight<S> {
         }
     }
 
+    /// This light prepared for the intensities of many normals.
+    pub(crate) fn for_normals(&self) -> NormalLight<S> {
+        NormalLight {
+            light: *self,
+            dir: S::dot3_prepare(self.dir.to_array()),
+        }
+    }
+
     /// `ambient + diffuse·max(0, n·L)` for a world-space unit normal.
+    #[cfg(feature = "raycast")]
     pub(crate) fn intensity(&self, n: Vec3<S>) -> S {
-        self.ambient + self.diffuse * n.dot(self.dir).max_of(S::ZERO)
+        self.shade(n.dot(self.dir))
+    }
+
+    /// `ambient + diffuse·max(0, d)` for `d = n·L`.
+    #[inline]
+    fn shade(&self, d: S) -> S {
+        self.ambient + self.diffuse * d.max_of(S::ZERO)
+    }
+}
+
+/// A light prepared for many normals of one object
+/// ([`PreparedLight::for_normals`]): the same intensities.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct NormalLight<S> {
+    light: PreparedLight<S>,
+    /// The direction prepared for dot products, where `S` has a route.
+    dir: Option<[[i32; 3]; 3]>,
+}
+
+impl<S: Scalar> NormalLight<S> {
+    /// `ambient + diffuse·max(0, n·L)` for a unit normal in the light's
+    /// space: the light's own intensity for `n`.
+    #[inline]
+    pub(crate) fn intensity(&self, n: Vec3<S>) -> S {
+        let fast = match &self.dir {
+            Some(d) => S::dot3_prepared(d, n.to_array()),
+            None => None,
+        };
+        self.light
+            .shade(fast.unwrap_or_else(|| n.dot(self.light.dir)))
     }
 }
 

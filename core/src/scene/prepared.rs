@@ -8,7 +8,7 @@
 //! [`PreparedMesh::new`] borrows slices that may just as well be `const`
 //! data in flash.
 
-use super::material::{PreparedLight, face_cross, face_direction};
+use super::material::{NormalLight, face_cross, face_direction};
 use super::{Color, Material, MeshData, Scene, SceneError};
 use crate::math::{Affine3, Vec3};
 use crate::pipeline::Cull;
@@ -393,7 +393,7 @@ pub(super) struct ObjectFrame<S> {
     pub(super) to_view: Affine3<S>,
     /// The light with its direction turned into object space (so the
     /// prepared object-space normals are used as they are).
-    pub(super) light: PreparedLight<S>,
+    pub(super) light: NormalLight<S>,
     /// Index of the object's first vertex in the frame's scratch.
     pub(super) first: usize,
 }

@@ -293,12 +293,13 @@ impl<S: Scalar> Renderer<S> {
             let rot = obj.pose.angles.to_mat3();
             let to_world = crate::math::Affine3::new(rot, obj.pose.origin);
             let to_view = self.view.camera.world_to_view().mul_affine(&to_world);
-            let light = self.light.in_object(&rot);
+            let light = self.light.in_object(&rot).for_normals();
             let mesh = obj.mesh;
             let n = mesh.positions().len();
             let out = &mut scratch[first..first + n];
             let pipe = &self.pipeline;
-            let pos = |k: usize| to_view.transform_point3(mesh.positions()[k]);
+            let points = to_view.for_points();
+            let pos = |k: usize| points.apply(mesh.positions()[k]);
             match obj.material {
                 #[cfg(feature = "gouraud")]
                 Material::Gouraud(_) => {

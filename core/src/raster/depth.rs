@@ -233,7 +233,11 @@ impl<K: StoredDepth> DepthTest for DepthBuffer<'_, K> {
         }
     }
 
-    #[inline]
+    // Always inlined, as the targets' `span_mut`: the scan converter calls
+    // it once per span, and x86-64 left it out of line once the span code
+    // had one call site (W1 there: 3.97 M instructions per frame out of
+    // line, 3.62 M inlined; ARMv6-M inlined it either way).
+    #[inline(always)]
     fn test_write<C, F: FnMut(u32) -> C>(
         &mut self,
         y: i32,
@@ -277,7 +281,7 @@ fn fused_run<K: StoredDepth, C, F: FnMut(u32) -> C>(
 impl<K: StoredDepth> DepthBuffer<'_, K> {
     /// The fused loop of [`DepthTest::test_write`]: one pass over the
     /// keys and the pixels together.
-    #[inline]
+    #[inline(always)]
     fn write_passing<C, F: FnMut(u32) -> C>(
         &mut self,
         y: i32,

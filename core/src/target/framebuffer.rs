@@ -99,7 +99,7 @@ impl<C: Copy> Target for Framebuffer<'_, C> {
         self.0.fill_with(y, x, len, colors);
     }
 
-    #[inline]
+    #[inline(always)]
     fn span_mut(&mut self, y: i32, x: i32, len: u32) -> Option<&mut [C]> {
         self.0.span_mut(y, x, len)
     }
@@ -234,7 +234,7 @@ impl<'a, C: Copy> Band<'a, C> {
 
     /// The whole span `x..x+len` of frame row `y`, or `None` if any of it
     /// is outside.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn exact_span_mut(&mut self, y: i32, x: i32, len: u32) -> Option<&mut [C]> {
         self.buf.get_mut(self.layout.span_exact(y, x, len)?)
     }
@@ -267,7 +267,7 @@ impl<C: Copy> Target for Band<'_, C> {
         }
     }
 
-    #[inline]
+    #[inline(always)]
     fn span_mut(&mut self, y: i32, x: i32, len: u32) -> Option<&mut [C]> {
         self.exact_span_mut(y, x, len)
     }

@@ -47,12 +47,12 @@ from collections import defaultdict
 STAGES = [
     ("clear", r"Target>::fill_solid$|fill_unrolled$|DepthBuffer<K>::clear$"),
     ("vertices", r"Renderer<S>::project(::\{\{closure\}\})?$|::project_vertex$|::project_vertices$"),
-    ("lighting", r"PreparedLight<S>::intensity$|quantize_intensity$|ScalableColor>::scale$"),
+    ("lighting", r"(Prepared|Normal)Light<S>::intensity$|PreparedLight<S>::shade$|quantize_intensity$|ScalableColor>::scale$"),
     ("dispatch", r"scene::render::Tri<S>::draw(::\{\{closure\}\})?$|scene::render::Frame<S>::draw(::\{\{closure\}\})?$"),
     ("culling", r"Pipeline<S>>::keep_inside$|Pipeline<S>>::keep$"),
     ("clipping", r"::project_polygon$|sightline::pipeline::clip::"),
     ("set-up", r"Gradient::new(::\{\{closure\}\})?$|EdgeStepper(32)?::new$|raster::edge::first_center$|raster::gradient::cross(::\{\{closure\}\})?$"),
-    ("edges", r"sightline::raster::fill_polygon(::\{\{closure\}\})?$|EdgeStepper(32)?::step$"),
+    ("edges", r"sightline::raster::fill_polygon(::\{\{closure\}\})?$|sightline::raster::chain_row$|EdgeStepper(32)?::step$"),
     ("spans", r"Gradient::span(_with)?$"),
     ("pixels", r"raster::depth::fused_run$|DepthTest>::test_write$|DepthBuffer<K>::write_passing(::\{\{closure\}\})?$|Layout::span_exact$|::span_mut$|::exact_span_mut$|::clipped_span_mut$|SpanShader<.*>::span$|raster::texture::"),
 ]

@@ -571,10 +571,15 @@ fn halves16(v: [i32; 3]) -> ([i32; 3], [i32; 3]) {
 #[inline(always)]
 #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
 fn split16_dot(r: &[[i32; 3]; 3], h: [i32; 3], l: [i32; 3]) -> i32 {
+    // Wrapping: exact for a row from `split16_row` (the bounds of
+    // `mul16_in_range`), and no overflow panic for any other array given
+    // to the public `Scalar::mat3_vec3_prepared` / `dot3_prepared`.
     #[inline(always)]
     fn p([a, ah, al]: [i32; 3], bh: i32, bl: i32) -> i32 {
-        let low = (((al as u32) * (bl as u32) + (1 << 15)) >> 16) as i32;
-        a * bh + ah * bl + low
+        let low = ((al as u32).wrapping_mul(bl as u32).wrapping_add(1 << 15) >> 16) as i32;
+        a.wrapping_mul(bh)
+            .wrapping_add(ah.wrapping_mul(bl))
+            .wrapping_add(low)
     }
     p(r[0], h[0], l[0])
         .saturating_add(p(r[1], h[1], l[1]))

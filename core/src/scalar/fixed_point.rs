@@ -460,8 +460,7 @@ impl<Frac: LeEqU32> Mul for Fx<Frac> {
 #[inline(always)]
 #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
 pub(crate) fn mul16_small(a: i32, b: i32) -> Option<i32> {
-    const LIM: u32 = 1 << 23;
-    if ((a as u32).wrapping_add(LIM) | (b as u32).wrapping_add(LIM)) >= 2 * LIM {
+    if ((a as u32).wrapping_add(SMALL16) | (b as u32).wrapping_add(SMALL16)) >= 2 * SMALL16 {
         return None;
     }
     Some(mul16_in_range(a, b))
@@ -475,10 +474,7 @@ pub(crate) fn mul16_small(a: i32, b: i32) -> Option<i32> {
 #[inline(always)]
 #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
 pub(crate) fn dot16_small3(a: [i32; 3], b: [i32; 3]) -> Option<i32> {
-    const LIM: u32 = 1 << 23;
-    let bias = |v: i32| (v as u32).wrapping_add(LIM);
-    let any = bias(a[0]) | bias(a[1]) | bias(a[2]) | bias(b[0]) | bias(b[1]) | bias(b[2]);
-    if any >= 2 * LIM {
+    if (bias16(a) | bias16(b)) >= 2 * SMALL16 {
         return None;
     }
     Some(dot16_in_range3(a, b))
@@ -501,13 +497,7 @@ fn dot16_in_range3(a: [i32; 3], b: [i32; 3]) -> i32 {
 #[inline(always)]
 #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
 pub(crate) fn mat3_vec16_small(m: &[[i32; 3]; 3], v: [i32; 3]) -> Option<[i32; 3]> {
-    const LIM: u32 = 1 << 23;
-    let bias = |x: i32| (x as u32).wrapping_add(LIM);
-    let mut any = bias(v[0]) | bias(v[1]) | bias(v[2]);
-    for row in m {
-        any |= bias(row[0]) | bias(row[1]) | bias(row[2]);
-    }
-    if any >= 2 * LIM {
+    if m.iter().fold(bias16(v), |any, r| any | bias16(*r)) >= 2 * SMALL16 {
         return None;
     }
     Some(m.map(|r| dot16_in_range3(r, v)))
@@ -520,10 +510,7 @@ pub(crate) fn mat3_vec16_small(m: &[[i32; 3]; 3], v: [i32; 3]) -> Option<[i32; 3
 #[inline]
 #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
 pub(crate) fn mat3_split16(m: &[[i32; 3]; 3]) -> Option<[[[i32; 3]; 3]; 3]> {
-    const LIM: u32 = 1 << 23;
-    let bias = |x: i32| (x as u32).wrapping_add(LIM);
-    let any = m.iter().flatten().fold(0, |acc, &x| acc | bias(x));
-    if any >= 2 * LIM {
+    if m.iter().fold(0, |any, r| any | bias16(*r)) >= 2 * SMALL16 {
         return None;
     }
     Some(m.map(split16_row))
@@ -548,9 +535,20 @@ pub(crate) fn vec3_split16(v: [i32; 3]) -> Option<[[i32; 3]; 3]> {
 #[inline(always)]
 #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
 fn in_range16(v: [i32; 3]) -> bool {
-    const LIM: u32 = 1 << 23;
-    let bias = |x: i32| (x as u32).wrapping_add(LIM);
-    (bias(v[0]) | bias(v[1]) | bias(v[2])) < 2 * LIM
+    bias16(v) < 2 * SMALL16
+}
+
+/// The bound of the small 16.16 products' operands: `[−2²³, 2²³)`.
+#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
+const SMALL16: u32 = 1 << 23;
+
+/// The OR of `v`'s entries biased by 2²³: below 2²⁴ exactly when every
+/// entry lies in `[−2²³, 2²³)`, so one compare tests several vectors.
+#[inline(always)]
+#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
+fn bias16(v: [i32; 3]) -> u32 {
+    let b = |x: i32| (x as u32).wrapping_add(SMALL16);
+    b(v[0]) | b(v[1]) | b(v[2])
 }
 
 /// The 16-bit halves of `v`'s entries, high (signed) and low.

@@ -86,6 +86,26 @@ pub(super) struct AreaRecip {
     r: u64,
 }
 
+impl Basis {
+    /// `(v·2^EXTRA) / A`, rounded to nearest (ties away from zero) and
+    /// saturated: by the shared reciprocal when there is one and the
+    /// quotient is in its range, else by one i64 division while the
+    /// shifted numerator stays below 2^62, else bit by bit
+    /// ([`div_round_shifted`]). One copy for both set-up routes.
+    #[inline(never)]
+    fn quotient(&self, v: i64) -> i64 {
+        if v.unsigned_abs() < 1 << (62 - EXTRA) {
+            let num = v << EXTRA;
+            match self.recip.and_then(|r| r.div_round(num, self.area2)) {
+                Some(q) => q,
+                None => div_round(num, self.area2),
+            }
+        } else {
+            div_round_shifted(v, self.area2)
+        }
+    }
+}
+
 impl AreaRecip {
     /// The reciprocal of `|area2|`, if it is in `[4, 2^31)` (slivers of
     /// smaller area divide).
@@ -147,51 +167,68 @@ impl AreaRecip {
 }
 
 impl Gradient {
-    /// Fits the plane through values `a` at the basis vertices.
+    /// Fits the plane through values `a` (depth keys or varyings) at the
+    /// basis vertices.
     ///
-    /// The numerators `(Δa₁·e₂ − Δa₂·e₁) << EXTRA` can reach 2^70 (`|Δa|` ≤
-    /// 2^32 for i32 varyings, below 2^24 for depths; an edge component ≤
-    /// 2^29; so each product is at most 2^61, the cross product below 2^62
-    /// and exact in i64, but not once shifted). Polygons of viewport size
-    /// with 16.16 varyings stay far below 2^62 shifted, and take one i64
-    /// division; the rest divides the unshifted cross product and carries
-    /// the remainder through the shift bit by bit ([`div_round_shifted`]),
-    /// in i64 too: no i128 arithmetic is linked (on Cortex-M0 an i128
-    /// division is a kilobyte of library code). Both paths give the same
-    /// quotient (round to nearest, ties away from zero).
-    pub(super) fn new(b: &Basis, a: [i64; 3]) -> Self {
+    /// Nearly every triangle takes the short route: the basis is `short`
+    /// (every coordinate within ±2^14, so edges within ±2^15) and both
+    /// differences `Δa` fit i32. Each numerator `Δa₁·e₂ − Δa₂·e₁` is then
+    /// four two-multiply products ([`mul_short`]), below
+    /// `2·2^31·2^15 = 2^47`. Everything else takes [`Self::general`], which
+    /// gives the same plane for every input (`short_route_is_general`).
+    /// (W1/W2 on ARMv6-M: 6.20 M / 7.51 M instructions per frame with
+    /// one route for both, whose 64-bit edge vectors and range tests
+    /// spilled; 6.09 M / 7.26 M, and 760 bytes less in the Gouraud
+    /// firmware.) No route links i128 arithmetic (on Cortex-M0 an i128
+    /// division is a kilobyte of library code).
+    #[inline]
+    pub(super) fn new(b: &Basis, a: [i32; 3]) -> Self {
         let (x0, y0) = b.p[0];
-        let e1 = (b.p[1].0 as i64 - x0 as i64, b.p[1].1 as i64 - y0 as i64);
-        let e2 = (b.p[2].0 as i64 - x0 as i64, b.p[2].1 as i64 - y0 as i64);
-        let da1 = a[1] - a[0];
-        let da2 = a[2] - a[0];
-        let area = b.area2;
-        let g = |v: i64| {
-            if v.unsigned_abs() < 1 << (62 - EXTRA) {
-                let num = v << EXTRA;
-                match b.recip.and_then(|r| r.div_round(num, area)) {
-                    Some(q) => q,
-                    None => div_round(num, area),
-                }
-            } else {
-                div_round_shifted(v, area)
-            }
+        let (Some(d1), Some(d2), true) = (a[1].checked_sub(a[0]), a[2].checked_sub(a[0]), b.short)
+        else {
+            return Self::general(b, a);
         };
-        let (nx, ny) = match (b.short, i32::try_from(da1), i32::try_from(da2)) {
-            // Each product below 2^46: the differences are exact in i64,
-            // the same values `cross` gives.
-            (true, Ok(d1), Ok(d2)) => {
-                let m = |d: i32, e: i64| mul_short(d, e as i32);
-                (m(d1, e2.1) - m(d2, e1.1), m(d2, e1.0) - m(d1, e2.0))
-            }
-            _ => (cross(da1, e2.1, da2, e1.1), cross(da2, e1.0, da1, e2.0)),
-        };
-        let gx = g(nx);
-        let gy = g(ny);
+        let (e1x, e1y) = (b.p[1].0 - x0, b.p[1].1 - y0);
+        let (e2x, e2y) = (b.p[2].0 - x0, b.p[2].1 - y0);
+        let nx = mul_short(d1, e2y) - mul_short(d2, e1y);
+        let ny = mul_short(d2, e1x) - mul_short(d1, e2x);
+        Self::from_quotients(a[0], b.quotient(nx), b.quotient(ny), x0, y0)
+    }
+
+    /// [`Self::new`] for any basis within ±[`COORD_LIMIT`](super::COORD_LIMIT),
+    /// which the scan converter checks first: edge components within
+    /// ±2^29 and value differences within ±2^32, so each product is
+    /// below 2^61 and the numerators, below 2^62, are exact in i64. Shifted
+    /// by [`EXTRA`] they may not be: [`Basis::quotient`] then divides
+    /// bit by bit.
+    #[cold]
+    #[inline(never)]
+    pub(super) fn general(b: &Basis, a: [i32; 3]) -> Self {
+        let (x0, y0) = b.p[0];
+        let e = |k: usize| (b.p[k].0 as i64 - x0 as i64, b.p[k].1 as i64 - y0 as i64);
+        let (e1, e2) = (e(1), e(2));
+        let da1 = a[1] as i64 - a[0] as i64;
+        let da2 = a[2] as i64 - a[0] as i64;
+        let nx = da1 * e2.1 - da2 * e1.1;
+        let ny = da2 * e1.0 - da1 * e2.0;
+        Self::from_quotients(a[0], b.quotient(nx), b.quotient(ny), x0, y0)
+    }
+
+    /// The gradients `(gx, gy)`, with [`EXTRA`] extra bits (tests only).
+    #[cfg(test)]
+    pub(super) fn gradients(&self) -> (i64, i64) {
+        (self.gx, self.gy)
+    }
+
+    /// The plane with value `a0` at `(x0, y0)` and gradients `gx`, `gy`
+    /// (with [`EXTRA`] extra bits).
+    #[inline(always)]
+    fn from_quotients(a0: i32, gx: i64, gy: i64, x0: i32, y0: i32) -> Self {
+        let a0 = a0 as i64;
         let lim = 1i64 << 32;
         let narrow = gx.unsigned_abs() < 1 << 31 && gy.unsigned_abs() < 1 << 31;
         Self {
-            base: a[0] << EXTRA,
+            base: a0 << EXTRA,
             gx,
             gy,
             x0,
@@ -201,12 +238,11 @@ impl Gradient {
             // overflows (a panic with debug assertions, and a wrapped
             // negative value that wrongly chose the fast path otherwise;
             // found by the `raster` fuzz target).
-            small: gx.unsigned_abs() < lim as u64
-                && gy.unsigned_abs() < lim as u64
-                && a[0].unsigned_abs() < 1 << 52,
+            // (`a0` is an i32, so `|base| < 2^40`.)
+            small: gx.unsigned_abs() < lim as u64 && gy.unsigned_abs() < lim as u64,
             narrow,
-            a0: a[0] as i32,
-            reach: if narrow && a[0].unsigned_abs() < 1 << 28 {
+            a0: a0 as i32,
+            reach: if narrow && a0.unsigned_abs() < 1 << 28 {
                 (gx.unsigned_abs().max(gy.unsigned_abs()) >> 16) as u32 + 1
             } else {
                 1 << 15
@@ -378,22 +414,6 @@ impl Gradient {
 #[inline(always)]
 pub(super) fn mul_short(d: i32, e: i32) -> i64 {
     (((d >> 16) * e) as i64) * (1 << 16) + ((d & 0xffff) * e) as i64
-}
-
-/// `p·q − r·s`: exact for the set-up's inputs (`|p|, |r| ≤ 2^32`,
-/// `|q|, |s| ≤ 2^29`, so each product is at most 2^61), saturated beyond.
-#[inline]
-fn cross(p: i64, q: i64, r: i64, s: i64) -> i64 {
-    let small = |v: i64| i32::try_from(v).ok();
-    match (small(p), small(q), small(r), small(s)) {
-        // Depth and varying differences and edge vectors almost always
-        // take this path: 32×32→64 multiplies (no 64×64 library call on
-        // ARMv6-M), each product below 2^58 with edges ≤ 2^29.
-        (Some(p), Some(q), Some(r), Some(s)) => {
-            crate::scalar::widening_mul(p, q).saturating_sub(crate::scalar::widening_mul(r, s))
-        }
-        _ => p.saturating_mul(q).saturating_sub(r.saturating_mul(s)),
-    }
 }
 
 /// `(v·2^EXTRA) / den` rounded to nearest, ties away from zero, saturated

@@ -318,7 +318,7 @@ where
         },
     };
     let zgrad = if Z::ENABLED {
-        let z = |v: &ScreenVertex<VARYINGS>| (v.z as i64) << DEPTH_FRAC_BITS;
+        let z = |v: &ScreenVertex<VARYINGS>| (v.z as i32) << DEPTH_FRAC_BITS;
         Gradient::new(&basis, [z(bv[0]), z(bv[1]), z(bv[2])])
     } else {
         Gradient::default()
@@ -326,10 +326,7 @@ where
     let mut vgrad = [Gradient::default(); VARYINGS];
     if solid.is_none() {
         for (k, g) in vgrad.iter_mut().enumerate() {
-            *g = Gradient::new(
-                &basis,
-                [bv[0].v[k] as i64, bv[1].v[k] as i64, bv[2].v[k] as i64],
-            );
+            *g = Gradient::new(&basis, [bv[0].v[k], bv[1].v[k], bv[2].v[k]]);
         }
     }
     let zmax = ((DepthKey::MAX as i32) << DEPTH_FRAC_BITS) | ((1 << DEPTH_FRAC_BITS) - 1);

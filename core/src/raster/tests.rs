@@ -726,24 +726,62 @@ fn mul_short_is_the_exact_product() {
 }
 
 proptest! {
-    /// The set-up's two-multiply products for short edges give the same
-    /// plane as the general products.
+    /// The set-up's short route (two-multiply products for short edges,
+    /// with or without the shared area reciprocal) gives the same plane
+    /// as the general route, for values of every magnitude, including
+    /// differences beyond i32 (which leave the short route).
     #[test]
-    fn short_edge_gradients_match_general(
+    fn short_route_is_general(
         p in proptest::array::uniform6(-(1i32 << 14)..=1 << 14),
         a in proptest::array::uniform3(any::<i32>()),
         shift in 0u32..32,
+        with_recip in any::<bool>(),
     ) {
-        use super::gradient::{Basis, Gradient};
+        use super::gradient::{AreaRecip, Basis, Gradient};
         let p = [(p[0], p[1]), (p[2], p[3]), (p[4], p[5])];
         let area2 = crate::scalar::widening_mul(p[1].0 - p[0].0, p[2].1 - p[0].1)
             - crate::scalar::widening_mul(p[1].1 - p[0].1, p[2].0 - p[0].0);
         prop_assume!(area2 != 0);
-        let a = a.map(|v| (v >> shift) as i64);
-        let basis = |short| Basis { p, area2, recip: None, short };
-        let fast = Gradient::new(&basis(true), a);
-        let general = Gradient::new(&basis(false), a);
+        let a = a.map(|v| v >> shift);
+        let recip = if with_recip { AreaRecip::new(area2) } else { None };
+        let basis = Basis { p, area2, recip, short: true };
+        let fast = Gradient::new(&basis, a);
+        let general = Gradient::general(&basis, a);
         prop_assert_eq!(std::format!("{fast:?}"), std::format!("{general:?}"));
+    }
+
+    /// Both set-up routes against the exact plane: `g = (Δa × e) · 2^8 / A`
+    /// in i128, rounded to nearest with ties away from zero and saturated,
+    /// for bases anywhere within ±COORD_LIMIT (short and not) and values
+    /// of every magnitude.
+    #[test]
+    fn gradients_match_i128(
+        p in proptest::array::uniform6(-(1i32 << 28)..=1 << 28),
+        pshift in 0u32..28,
+        a in proptest::array::uniform3(any::<i32>()),
+        shift in 0u32..32,
+        with_recip in any::<bool>(),
+    ) {
+        use super::gradient::{AreaRecip, Basis, Gradient};
+        let p = p.map(|v| v >> pshift);
+        let p = [(p[0], p[1]), (p[2], p[3]), (p[4], p[5])];
+        let e = |k: usize| ((p[k].0 - p[0].0) as i128, (p[k].1 - p[0].1) as i128);
+        let (e1, e2) = (e(1), e(2));
+        let area2 = e1.0 * e2.1 - e1.1 * e2.0;
+        prop_assume!(area2 != 0);
+        let a = a.map(|v| v >> shift);
+        let d1 = a[1] as i128 - a[0] as i128;
+        let d2 = a[2] as i128 - a[0] as i128;
+        let want = (
+            div_round_i128((d1 * e2.1 - d2 * e1.1) << 8, area2),
+            div_round_i128((d2 * e1.0 - d1 * e2.0) << 8, area2),
+        );
+        let area2 = area2 as i64;
+        let short = p.iter().all(|q| q.0.abs() <= 1 << 14 && q.1.abs() <= 1 << 14);
+        let recip = if with_recip { AreaRecip::new(area2) } else { None };
+        let basis = Basis { p, area2, recip, short };
+        prop_assert_eq!(Gradient::new(&basis, a).gradients(), want);
+        prop_assert_eq!(Gradient::general(&basis, a).gradients(), want);
     }
 
     /// A plane's span values by the 32-bit route equal the general
@@ -765,7 +803,7 @@ proptest! {
         let area2 = crate::scalar::widening_mul(p[1].0 - p[0].0, p[2].1 - p[0].1)
             - crate::scalar::widening_mul(p[1].1 - p[0].1, p[2].0 - p[0].0);
         prop_assume!(area2 != 0);
-        let a = a.map(|v| (v >> shift) as i64);
+        let a = a.map(|v| v >> shift);
         let g = Gradient::new(&Basis { p, area2, recip: None, short: true }, a);
         let (x0, y0) = p[0];
         let d = |q: (i32, i32)| (q.0 - x0).unsigned_abs().max((q.1 - y0).unsigned_abs());

@@ -246,13 +246,16 @@ where
     }
     // One pass: the top and bottom vertices, and the largest coordinate
     // magnitude (for the range checks here and for the 32-bit walk).
+    // (The extreme rows are kept beside their indices: reading
+    // `verts[top].y` back cost a bounds check and a load per vertex.)
     let (mut top, mut bottom, mut reach) = (0, 0, 0u32);
+    let (mut top_y, mut bottom_y) = (verts[0].y, verts[0].y);
     for (i, v) in verts.iter().enumerate() {
-        if v.y < verts[top].y {
-            top = i;
+        if v.y < top_y {
+            (top, top_y) = (i, v.y);
         }
-        if v.y > verts[bottom].y {
-            bottom = i;
+        if v.y > bottom_y {
+            (bottom, bottom_y) = (i, v.y);
         }
         reach = reach.max(v.x.unsigned_abs()).max(v.y.unsigned_abs());
     }
@@ -263,8 +266,8 @@ where
     if let Some(r) = depth.clip_rect() {
         clip = clip.intersect(&r);
     }
-    let row0 = first_center(verts[top].y).max(clip.y0);
-    let row1 = first_center(verts[bottom].y).min(clip.y1);
+    let row0 = first_center(top_y).max(clip.y0);
+    let row1 = first_center(bottom_y).min(clip.y1);
     if row0 >= row1 || clip.x0 >= clip.x1 {
         return FillOutcome::Empty;
     }

@@ -244,21 +244,35 @@ where
     if n < 3 {
         return FillOutcome::Empty;
     }
-    // One pass: the top and bottom vertices, and the largest coordinate
-    // magnitude (for the range checks here and for the 32-bit walk).
-    // (The extreme rows are kept beside their indices: reading
-    // `verts[top].y` back cost a bounds check and a load per vertex.)
-    let (mut top, mut bottom, mut reach) = (0, 0, 0u32);
-    let (mut top_y, mut bottom_y) = (verts[0].y, verts[0].y);
-    for (i, v) in verts.iter().enumerate() {
-        if v.y < top_y {
-            (top, top_y) = (i, v.y);
+    // A triangle (most of a mesh) is sorted top to bottom once, by
+    // reference (swapping the vertices themselves moved their varyings
+    // too): its walk below takes the order, and its extreme rows come
+    // from it. Any other polygon finds its extreme rows in one pass. Both
+    // also take the largest coordinate magnitude (for the range checks
+    // here and for the 32-bit walk).
+    let magnitude = |v: &ScreenVertex<VARYINGS>| v.x.unsigned_abs().max(v.y.unsigned_abs());
+    let (sorted, top_y, bottom_y, reach) = if let [a, b, c] = verts {
+        let (mut t, mut m, mut b) = (a, b, c);
+        if m.y < t.y {
+            core::mem::swap(&mut t, &mut m);
         }
-        if v.y > bottom_y {
-            (bottom, bottom_y) = (i, v.y);
+        if b.y < m.y {
+            core::mem::swap(&mut m, &mut b);
         }
-        reach = reach.max(v.x.unsigned_abs()).max(v.y.unsigned_abs());
-    }
+        if m.y < t.y {
+            core::mem::swap(&mut t, &mut m);
+        }
+        let reach = magnitude(t).max(magnitude(m)).max(magnitude(b));
+        (Some([t, m, b]), t.y, b.y, reach)
+    } else {
+        let (mut top_y, mut bottom_y, mut reach) = (verts[0].y, verts[0].y, 0u32);
+        for v in verts {
+            top_y = top_y.min(v.y);
+            bottom_y = bottom_y.max(v.y);
+            reach = reach.max(magnitude(v));
+        }
+        (None, top_y, bottom_y, reach)
+    };
     if reach > COORD_LIMIT as u32 {
         return FillOutcome::Rejected;
     }
@@ -343,10 +357,7 @@ where
     // spans are identical. Everything else (polygons, and triangles beyond
     // ±`SMALL_COORD_LIMIT`, which no viewport below 992 pixels produces)
     // walks the chains with 64-bit edges.
-    let small_triangle = match verts {
-        [a, b, c] if reach <= edge::SMALL_COORD_LIMIT as u32 => Some([a, b, c]),
-        _ => None,
-    };
+    let small_triangle = sorted.filter(|_| reach <= edge::SMALL_COORD_LIMIT as u32);
     // Every plane by the 32-bit route ([`Gradient::span_tiny`]) when each
     // fits this triangle's extent around the basis origin (vertex 0): the
     // same values as the general route, decided once per triangle. Not on
@@ -452,19 +463,7 @@ where
     // own span code, was 1.1 KB more in the flat cube firmware and 2.7 KB
     // more in the Gouraud one on thumbv6m, for 1 % fewer instructions per
     // W1 and W2 frame.
-    let mut tri = small_triangle.map(|[v0, v1, v2]| {
-        // Sorted by reference (swapping the vertices themselves moved
-        // their varyings too).
-        let (mut t, mut m, mut b) = (v0, v1, v2);
-        if m.y < t.y {
-            core::mem::swap(&mut t, &mut m);
-        }
-        if b.y < m.y {
-            core::mem::swap(&mut m, &mut b);
-        }
-        if m.y < t.y {
-            core::mem::swap(&mut t, &mut m);
-        }
+    let mut tri = small_triangle.map(|[t, m, b]| {
         let split = first_center(m.y).clamp(row0, row1);
         let long = EdgeStepper32::new(t.x, t.y, b.x, b.y, row0);
         // The upper short edge from `row0`, and the lower one from `split`
@@ -477,6 +476,9 @@ where
         (long, short, lower_at, [m.x, m.y, b.x, b.y])
     });
     let mut chains = if tri.is_none() {
+        // The first vertex on the top row and the first on the bottom row.
+        let first_at = |y: i32| verts.iter().position(|v| v.y == y).unwrap_or(0);
+        let (top, bottom) = (first_at(top_y), first_at(bottom_y));
         Some((
             Chain::new(verts, top, bottom, true),
             Chain::new(verts, top, bottom, false),

@@ -57,8 +57,8 @@ pub trait SpanShader<const VARYINGS: usize> {
         let mut v = start;
         target.fill_with(y, x, len, || {
             let c = self.color(&v);
-            for (vk, sk) in v.iter_mut().zip(step) {
-                *vk = vk.wrapping_add(sk);
+            for (vk, sk) in v.iter_mut().zip(&step) {
+                *vk = vk.wrapping_add(*sk);
             }
             c
         });

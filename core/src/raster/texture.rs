@@ -199,8 +199,8 @@ impl<C: Copy, W: Wrap, const N: u32> SpanShader<3> for PerspectiveTexture<'_, C,
             let mut v = start;
             target.fill_with(y, x, len, || {
                 let c = self.color(&v);
-                for (vk, sk) in v.iter_mut().zip(step) {
-                    *vk = vk.wrapping_add(sk);
+                for (vk, sk) in v.iter_mut().zip(&step) {
+                    *vk = vk.wrapping_add(*sk);
                 }
                 c
             });

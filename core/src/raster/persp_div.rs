@@ -4,22 +4,35 @@
 //! instructions. Used by [`PerspectiveTexture`](super::PerspectiveTexture).
 
 use super::PERSPECTIVE_Q_BITS;
-use crate::scalar::recip62;
+use crate::scalar::recip62_floor;
+
+/// Below this many units of 2^−16 (2^13 texels) [`divide`] returns the
+/// exact truncated quotient.
+pub(crate) const EXACT_BELOW: u64 = 1 << 29;
 
 /// (u, v) in 16.16 from (u·q, v·q) in 16.16 and q = near/z in 8.24, with
-/// one reciprocal instead of two divisions: `r = ⌈2^62 / q'⌉` for
-/// `q' = q·2^s` normalized to `[2^30, 2^31)`, then `|u·q|·r >> (38 − s)`
-/// with the sign of `u·q` (truncation toward zero, as a division). `r`
-/// rounds up, so the magnitude is never below the exact quotient's and
-/// exceeds it by less than 2^−31 of it: by less than one unit of 2^−16
-/// while |u| is below 2^15 texels (the i32 range of the varyings), where
-/// the result equals the truncated exact quotient or is one unit larger,
-/// and an exact quotient stays exact (test
-/// `perspective_divide_is_within_one_unit_of_the_exact_quotient`). q ≤ 0
-/// is taken as 1. On ARMv6-M, which has no divide instruction, this is a
-/// table load, three 32-bit and five 64-bit multiplies (library calls
-/// there), where exact division is two 64-bit divisions (each some
-/// hundreds of instructions in compiler-builtins).
+/// one reciprocal instead of two divisions.
+///
+/// `r = ⌊2^62/q'⌋ + 4` (from [`recip62_floor`], which is at most 3 below
+/// the floor) for `q' = q·2^s` normalized to `[2^30, 2^31)`, so
+/// `R < r ≤ R + 4` for `R = 2^62/q'`, capped at 2^32 (at or above `R`).
+/// Each magnitude is then `e = |u·q|·r >> (38 − s)`: never below the
+/// truncated exact quotient `T = ⌊|u·q|·2^24 / q⌋`, and above it by at
+/// most `4·T/2^31 + 1` units (`r − R ≤ 4`, `R > 2^31`). Below
+/// [`EXACT_BELOW`] that excess is below 1, so `e` is `T` or `T + 1`, and
+/// the sign of `|u·q|·2^24 − e·q`, which lies in `(−q, q)` and so is exact
+/// in wrapping 32-bit arithmetic, says which: the result is exactly `T`
+/// with the sign of `u·q` (truncation toward zero, as a division). Beyond
+/// it (|u| of 2^13 texels or more) it is within `4·T/2^31 + 1` units
+/// above `T`. Checked against the exact quotient in i128 by
+/// `perspective_divide_is_the_exact_quotient`. q ≤ 0 is taken as 1.
+///
+/// On ARMv6-M, which has no divide instruction, this is a table load,
+/// a few 32-bit multiplies and no library call, where exact division is
+/// two 64-bit divisions (each some hundreds of instructions in
+/// compiler-builtins). (The ceiling reciprocal `recip62`, with its unit
+/// steps, and no correction cost the exactly divided corridor frame
+/// 35.98 M instructions on ARMv6-M, within one unit instead of exact.)
 #[inline]
 pub(crate) fn divide(v: &[i32; 3]) -> (i64, i64) {
     // q in [1, 2^31); s in [0, 30].
@@ -28,10 +41,16 @@ pub(crate) fn divide(v: &[i32; 3]) -> (i64, i64) {
     let (s, mag) = (crate::scalar::normalize_shift(q), mag_halves);
     #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
     let (s, mag) = (q.leading_zeros() - 1, mag_wide);
-    let r = recip62(q << s);
+    let r = (recip62_floor(q << s) + 4).min(1 << 32);
     let sh = 62 - PERSPECTIVE_Q_BITS - s;
     let one = |x: i32| -> i64 {
-        let m = mag(x.unsigned_abs(), r, sh);
+        let a = x.unsigned_abs();
+        let mut m = mag(a, r, sh);
+        if m < EXACT_BELOW {
+            // |u·q|·2^24 − m·q in (−q, q): its low 32 bits, read as i32.
+            let rem = (a << PERSPECTIVE_Q_BITS).wrapping_sub((m as u32).wrapping_mul(q));
+            m -= u64::from((rem as i32) < 0);
+        }
         // m < 2^55 (sh ≥ 8), so it fits i64 either way.
         if x < 0 { -(m as i64) } else { m as i64 }
     };

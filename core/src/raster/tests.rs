@@ -1326,37 +1326,26 @@ fn saturated_gradient_does_not_overflow() {
 
 #[cfg(feature = "perspective")]
 proptest! {
-    /// The reciprocal used at subdivided-run endpoints against the exact
-    /// quotient in i128: never below it in magnitude, above it by less
-    /// than 2^−31 of it plus the truncation, so equal or one unit larger
-    /// while the quotient is below 2^31 units, and then exact when q
-    /// divides.
+    /// The perspective divide against the exact quotient in i128: the
+    /// truncated quotient itself below `EXACT_BELOW` units, and beyond it
+    /// never below it and above it by at most 4·T/2^31 + 1 units.
     #[test]
-    fn perspective_divide_is_within_one_unit_of_the_exact_quotient(
-        x in any::<i32>(),
+    fn perspective_divide_is_the_exact_quotient(
+        x in prop_oneof![any::<i32>(), -(1i32 << 12)..(1 << 12)],
         q in prop_oneof![1i32..64, 1i32..(1 << 24), any::<i32>()],
     ) {
-        use super::persp_div::divide;
-        // The exact quotients in i64, truncated toward zero (the shaders'
-        // division before the reciprocal replaced it).
-        let divide_exact = |v: &[i32; 3]| {
-            let q = (v[2] as i64).max(1);
-            ((v[0] as i64) << PERSPECTIVE_Q_BITS) / q
-        };
+        use super::persp_div::{EXACT_BELOW, divide};
         let (got, _) = divide(&[x, 0, q]);
         let qq = q.max(1) as i128;
         let num = (x.unsigned_abs() as i128) << PERSPECTIVE_Q_BITS;
         let trunc = num / qq;
         let m = got.unsigned_abs() as i128;
         prop_assert!(got == 0 || (got < 0) == (x < 0));
-        prop_assert!(m >= trunc, "{m} < {trunc}");
-        prop_assert!(m - trunc <= trunc / (1 << 31) + 1, "{m} vs {trunc}");
-        if trunc < (1 << 31) {
-            prop_assert!(m - trunc <= 1);
-            prop_assert_eq!(divide_exact(&[x, 0, q]).unsigned_abs() as i128, trunc);
-            if num % qq == 0 {
-                prop_assert_eq!(m, trunc);
-            }
+        if trunc < EXACT_BELOW as i128 {
+            prop_assert_eq!(m, trunc);
+        } else {
+            prop_assert!(m >= trunc, "{m} < {trunc}");
+            prop_assert!(m - trunc <= 4 * trunc / (1 << 31) + 1, "{m} vs {trunc}");
         }
     }
 }

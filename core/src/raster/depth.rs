@@ -95,6 +95,9 @@ pub trait StoredDepth: Copy + Ord + core::fmt::Debug + private::Sealed {
     /// The stored value for an interpolated depth `z` in 24.8 (within
     /// `0..=65535·256+255`, as the span set-up guarantees).
     fn from_z(z: i32) -> Self;
+    /// Whether depth `z` passes against `stored` (`from_z(z) < stored`,
+    /// less-than), for `z` in the same range.
+    fn passes(z: i32, stored: Self) -> bool;
 }
 
 impl StoredDepth for u16 {
@@ -102,6 +105,14 @@ impl StoredDepth for u16 {
     #[inline]
     fn from_z(z: i32) -> Self {
         (z >> DEPTH_FRAC_BITS) as u16
+    }
+    /// Compared in u32: for `z` in `0..2^24` the shifted value is the key
+    /// itself, so no zero extension of it is needed, and the register it
+    /// took stays free in the per-pixel loops (ARMv6-M has seven low
+    /// registers for them).
+    #[inline]
+    fn passes(z: i32, stored: Self) -> bool {
+        (z as u32 >> DEPTH_FRAC_BITS) < u32::from(stored)
     }
 }
 
@@ -115,6 +126,10 @@ impl StoredDepth for u32 {
     #[inline]
     fn from_z(z: i32) -> Self {
         z as u32
+    }
+    #[inline]
+    fn passes(z: i32, stored: Self) -> bool {
+        (z as u32) < stored
     }
 }
 
@@ -268,9 +283,8 @@ fn fused_run<K: StoredDepth, C, F: FnMut(u32) -> C>(
     mut color: F,
 ) {
     for ((d, p), i) in keys.iter_mut().zip(pixels).zip(0..) {
-        let key = K::from_z(z);
-        if key < *d {
-            *d = key;
+        if K::passes(z, *d) {
+            *d = K::from_z(z);
             *p = color(i);
         }
         z = z.wrapping_add(dz);
@@ -313,9 +327,8 @@ impl<K: StoredDepth> DepthBuffer<'_, K> {
         for ((d, p), i) in keys.iter_mut().zip(pixels).zip(skip..) {
             // The span set-up keeps z within 0..=65535·256+255, so the
             // conversion is exact.
-            let key = K::from_z(z);
-            if key < *d {
-                *d = key;
+            if K::passes(z, *d) {
+                *d = K::from_z(z);
                 *p = color(i);
             }
             z = z.wrapping_add(dz);
@@ -331,7 +344,7 @@ impl<K: StoredDepth> DepthBuffer<'_, K> {
 fn skip_failing<K: StoredDepth>(row: &[K], mut z: i32, dz: i32) -> (usize, i32) {
     let mut n = 0;
     for &d in row {
-        if K::from_z(z) < d {
+        if K::passes(z, d) {
             break;
         }
         z = z.wrapping_add(dz);
@@ -347,11 +360,10 @@ fn skip_failing<K: StoredDepth>(row: &[K], mut z: i32, dz: i32) -> (usize, i32) 
 fn store_passing<K: StoredDepth>(row: &mut [K], mut z: i32, dz: i32) -> (usize, i32) {
     let mut n = 0;
     for d in row {
-        let key = K::from_z(z);
-        if key >= *d {
+        if !K::passes(z, *d) {
             break;
         }
-        *d = key;
+        *d = K::from_z(z);
         z = z.wrapping_add(dz);
         n += 1;
     }

@@ -407,7 +407,8 @@ mod tests {
             .chain([0, 255, 256])
         {
             for &d in &stored {
-                let want = ((z >> DEPTH_FRAC_BITS) < i32::from(d)).then_some((z >> 8) as u16);
+                let want = ((z >> DEPTH_FRAC_BITS) < i32::from(d))
+                    .then_some((z >> DEPTH_FRAC_BITS) as u16);
                 assert_eq!(passes16_wide(z, d), want, "z {z}, stored {d}");
                 assert_eq!(passes16_narrow(z, d), want, "z {z}, stored {d}");
             }

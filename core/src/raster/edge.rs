@@ -294,9 +294,6 @@ mod tests {
         }
     }
 
-    /// The 32-bit stepper gives the same columns and remainders as the
-    /// 64-bit one on every row, for edges anywhere in its range and walks
-    /// started on any row.
     /// The shift-and-subtract division (ARMv6-M's route; hosts divide in
     /// hardware) against the hardware quotient and remainder.
     #[test]
@@ -340,6 +337,9 @@ mod tests {
         }
     }
 
+    /// The 32-bit stepper gives the same columns and remainders as the
+    /// 64-bit one on every row, for edges anywhere in its range and walks
+    /// started on any row.
     #[test]
     fn stepper32_matches_stepper64() {
         let lim = SMALL_COORD_LIMIT;

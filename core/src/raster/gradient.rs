@@ -94,14 +94,17 @@ impl Basis {
     /// ([`div_round_shifted`]). One copy for both set-up routes.
     #[inline(never)]
     fn quotient(&self, v: i64) -> i64 {
-        if v.unsigned_abs() < 1 << (62 - EXTRA) {
-            let num = v << EXTRA;
-            match self.recip.and_then(|r| r.div_round(num, self.area2)) {
-                Some(q) => q,
-                None => div_round(num, self.area2),
+        let m = v.unsigned_abs();
+        if m >= 1 << (62 - EXTRA) {
+            return div_round_shifted(v, self.area2);
+        }
+        // On the magnitude, as `div_round` (|v·2^EXTRA| = m·2^EXTRA).
+        match self.recip.and_then(|r| r.div_round_magnitude(m << EXTRA)) {
+            Some(q) => {
+                let q = q as i64;
+                if (v < 0) != (self.area2 < 0) { -q } else { q }
             }
-        } else {
-            div_round_shifted(v, self.area2)
+            None => div_round(v << EXTRA, self.area2),
         }
     }
 }
@@ -154,15 +157,14 @@ impl AreaRecip {
         Some(u64::from(e - u32::from(below)))
     }
 
-    /// [`div_round`]`(num, den)` for `den = ±|A|` and `|num| < 2^62`,
-    /// when the quotient is in range of [`Self::div_floor`]; `None` then
-    /// the caller divides.
+    /// The magnitude of [`div_round`]`(num, den)` for `den = ±|A|` and
+    /// `m = |num| < 2^62`, `⌊(m + ⌊|A|/2⌋) / |A|⌋`, when the quotient is in
+    /// range of [`Self::div_floor`]; `None` then the caller divides. (On
+    /// the magnitude, so that the caller forms it once: W2 on ARMv6-M
+    /// 6.91 M -> 6.88 M instructions per frame.)
     #[inline]
-    pub(super) fn div_round(&self, num: i64, den: i64) -> Option<i64> {
-        // div_round: truncate (|num| + ⌊|den|/2⌋) / |den|, signed.
-        let u = num.unsigned_abs() + (self.d / 2) as u64;
-        let q = self.div_floor(u)? as i64;
-        Some(if (num < 0) != (den < 0) { -q } else { q })
+    pub(super) fn div_round_magnitude(&self, m: u64) -> Option<u64> {
+        self.div_floor(m + (self.d / 2) as u64)
     }
 }
 

@@ -216,8 +216,11 @@ impl<S: Scalar> Pipeline<S> {
     /// viewport up to 990 pixels with the 16-pixel guard band), the edge
     /// vectors are below 2^15, each product below 2^30 and their
     /// difference below 2^31: an exact `i32` cross product, two 32-bit
-    /// multiplies. Larger viewports take [`Self::keep`].
-    #[inline]
+    /// multiplies. Larger viewports take [`Self::keep`]. (Always inlined:
+    /// ARMv6-M had left this per-triangle test out of line, and inlined
+    /// it took W1 from 5.74 M to 5.69 M instructions per frame, with the
+    /// same .text.)
+    #[inline(always)]
     #[must_use]
     pub(crate) fn keep_inside(&self, a: (i32, i32), b: (i32, i32), c: (i32, i32)) -> bool {
         if self.cull == Cull::None {

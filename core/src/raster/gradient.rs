@@ -10,7 +10,7 @@
 //! rows before it (bands render bit-identically) and costs one
 //! multiply-add per quantity per span.
 
-use crate::scalar::{normalize_shift, recip62_floor};
+use crate::scalar::{normalize_shift, recip62_above};
 use crate::scalar::{shr_to_u32, widening_mul_u32};
 
 /// Extra fractional bits kept in the gradients beyond the values' own.
@@ -67,10 +67,9 @@ pub(super) struct Basis {
 /// instructions a quotient on ARMv6-M, `u64_div_rem` and the `u32_div_rem`
 /// it calls).
 ///
-/// `r` is [`recip62_floor`] plus 4, capped at 2^32: `recip62_floor` is at
-/// or below `R = 2^62/d'` and less than 4 below it (for every divisor:
-/// `recip62_exhaustive`), so `R < r ≤ R + 4` (the cap is at or above `R`,
-/// since `d' ≥ 2^30`). Why one correction then suffices: for
+/// `r` is [`recip62_above`]`(d')`: `R ≤ r ≤ R + 4` for `R = 2^62/d'`
+/// (for every divisor: `recip62_exhaustive`). Why one correction then
+/// suffices: for
 /// `u < 2^(60−s)` the estimate `⌊u·r / 2^(62−s)⌋` lies in
 /// `[u/|A|, u/|A| + 1)` (`r − R ≤ 4` moves `u·r/2^(62−s)` by at most
 /// `4u·2^s/2^62 < 1`), so it is `⌊u/|A|⌋` or one more, and the sign of
@@ -123,7 +122,7 @@ impl AreaRecip {
         Some(Self {
             d,
             k: 30 - s,
-            r: (recip62_floor(d << s) + 4).min(1 << 32),
+            r: recip62_above(d << s),
         })
     }
 

@@ -4,7 +4,7 @@
 //! instructions. Used by [`PerspectiveTexture`](super::PerspectiveTexture).
 
 use super::PERSPECTIVE_Q_BITS;
-use crate::scalar::recip62_floor;
+use crate::scalar::recip62_above;
 
 /// Below this many units of 2^−16 (2^13 texels) [`divide`] returns the
 /// exact truncated quotient.
@@ -13,10 +13,8 @@ pub(crate) const EXACT_BELOW: u64 = 1 << 29;
 /// (u, v) in 16.16 from (u·q, v·q) in 16.16 and q = near/z in 8.24, with
 /// one reciprocal instead of two divisions.
 ///
-/// `r = ⌊2^62/q'⌋ + 4` (from [`recip62_floor`], which is at most 3 below
-/// the floor) for `q' = q·2^s` normalized to `[2^30, 2^31)`, so
-/// `R < r ≤ R + 4` for `R = 2^62/q'`, capped at 2^32 (at or above `R`).
-/// Each magnitude is then `e = |u·q|·r >> (38 − s)`: never below the
+/// `r` = [`recip62_above`]`(q')` for `q' = q·2^s` normalized to
+/// `[2^30, 2^31)`, so `R ≤ r ≤ R + 4` for `R = 2^62/q'`. Each magnitude is then `e = |u·q|·r >> (38 − s)`: never below the
 /// truncated exact quotient `T = ⌊|u·q|·2^24 / q⌋`, and above it by at
 /// most `4·T/2^31 + 1` units (`r − R ≤ 4`, `R > 2^31`). Below
 /// [`EXACT_BELOW`] that excess is below 1, so `e` is `T` or `T + 1`, and
@@ -30,9 +28,10 @@ pub(crate) const EXACT_BELOW: u64 = 1 << 29;
 /// On ARMv6-M, which has no divide instruction, this is a table load,
 /// a few 32-bit multiplies and no library call, where exact division is
 /// two 64-bit divisions (each some hundreds of instructions in
-/// compiler-builtins). (The ceiling reciprocal `recip62`, with its unit
-/// steps, and no correction cost the exactly divided corridor frame
-/// 35.98 M instructions on ARMv6-M, within one unit instead of exact.)
+/// compiler-builtins). (With the ceiling reciprocal `recip62`, its unit
+/// steps and no correction, within one unit instead of exact, the exactly
+/// divided corridor frame cost 35.99 M instructions on ARMv6-M; 30.09 M
+/// with this.)
 #[inline]
 pub(crate) fn divide(v: &[i32; 3]) -> (i64, i64) {
     // q in [1, 2^31); s in [0, 30].
@@ -41,7 +40,7 @@ pub(crate) fn divide(v: &[i32; 3]) -> (i64, i64) {
     let (s, mag) = (crate::scalar::normalize_shift(q), mag_halves);
     #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
     let (s, mag) = (q.leading_zeros() - 1, mag_wide);
-    let r = (recip62_floor(q << s) + 4).min(1 << 32);
+    let r = recip62_above(q << s);
     let sh = 62 - PERSPECTIVE_Q_BITS - s;
     let one = |x: i32| -> i64 {
         let a = x.unsigned_abs();

@@ -36,7 +36,7 @@ mod float;
 mod float_math;
 pub(crate) mod predicates;
 mod recip;
-pub(crate) use recip::{recip62, recip62_floor};
+pub(crate) use recip::{recip62, recip62_above, recip62_floor};
 
 pub use fixed_point::{Fx, I2F30, I16F16, I20F12, I24F8};
 

@@ -1,6 +1,8 @@
-//! `⌈2^62 / d⌉` without a division instruction, for the fixed-point
-//! divisions that share a divisor (`Scalar::checked_quotients`) and the
-//! raster's perspective divide: ARMv6-M (Cortex-M0) has no divide
+//! `2^62 / d` without a division instruction: the ceiling for the
+//! fixed-point divisions that share a divisor (`Scalar::checked_quotients`),
+//! and estimates at most a few units off for callers that correct their
+//! quotients (the 16.16 perspective projection, the raster's gradient
+//! set-up and perspective divide). ARMv6-M (Cortex-M0) has no divide
 //! instruction, and a 64-bit division in compiler-builtins costs hundreds
 //! of instructions there.
 
@@ -38,8 +40,8 @@ pub(crate) fn recip62(d: u32) -> u64 {
     // the product fits u64. A Newton step from below stays at or below
     // the reciprocal (x·(2 − d·x/2^62) ≤ 2^62/d), and truncation only
     // lowers it. (Written as in `recip62_floor`, this copy, out of line
-    // in the perspective-texture span loop, cost about 30 instructions
-    // more per call on ARMv6-M: the corridor frame 37.2 M -> 39.5 M.)
+    // in what was then the perspective-texture span loop, cost about 30
+    // instructions more per call on ARMv6-M.)
     let two62 = 1u64 << 62;
     let e = two62 - mul_u32_u64(d, x);
     x += mul_u32_u64((e >> 22) as u32, x) >> 40;
@@ -73,6 +75,20 @@ pub(crate) fn recip62_floor(d: u32) -> u64 {
     let e_hi = (1u32 << 30).wrapping_sub(hi).wrapping_sub(borrow as u32);
     let e22 = (e_hi << 10) | (e_lo >> 22);
     x + (mul_u32_u64(e22, x) >> 40)
+}
+
+/// A reciprocal at or above `R = 2^62 / d` and at most 4 above it, at
+/// most 2^32, for `d` in `[2^30, 2^31)` (others are clamped): what a
+/// caller needs whose estimate `⌊u·r / 2^k⌋` must never fall below the
+/// quotient and exceed it by less than one while `4u/2^k < 1`, so that one
+/// 32-bit check of the remainder's sign corrects it (the raster's gradient
+/// set-up and perspective divide). [`recip62_floor`] is at or below `R`
+/// and less than 4 below it, so adding 4 gives `R < r ≤ R + 4`; the cap
+/// at 2^32 takes effect only at `d = 2^30`, where `R = 2^32` exactly and
+/// `r = R`.
+#[inline]
+pub(crate) fn recip62_above(d: u32) -> u64 {
+    (recip62_floor(d) + 4).min(1 << 32)
 }
 
 /// The seed and first Newton step of [`recip62`] for `d` in

@@ -425,7 +425,7 @@ fn from_f32_exhaustive() {
 #[test]
 #[ignore = "2^30 divisors: run in release with --ignored (about 10 s)"]
 fn recip62_exhaustive() {
-    use super::{recip62, recip62_floor};
+    use super::{recip62, recip62_above, recip62_floor};
     for d in (1u32 << 30)..(1u32 << 31) {
         let exact = (1u128 << 62).div_ceil(d as u128) as u64;
         assert_eq!(recip62(d), exact, "d = {d}");
@@ -433,6 +433,30 @@ fn recip62_exhaustive() {
         let x = recip62_floor(d);
         // perspective16's exactness rests on this bound.
         assert!(x <= floor && floor - x < 4, "d = {d}: {x} against {floor}");
+        // The raster's one-step corrections rest on R ≤ r ≤ R + 4.
+        assert!(recip62_above_holds(d, recip62_above(d)), "d = {d}");
+    }
+}
+
+/// `R ≤ r ≤ R + 4` for `R = 2^62/d`, and `r ≤ 2^32`, in exact integers.
+fn recip62_above_holds(d: u32, r: u64) -> bool {
+    let (d, r) = (d as u128, r as u128);
+    r * d >= 1 << 62 && (r - 4) * d <= 1 << 62 && r <= 1 << 32
+}
+
+#[test]
+fn recip62_above_is_above_by_at_most_four() {
+    use super::recip62_above;
+    // Both ends, every seed interval's ends and a stride through the rest
+    // (all 2^30 divisors: `recip62_exhaustive`).
+    let mut ds: Vec<u32> = vec![1 << 30, (1 << 31) - 1];
+    for i in 0..256u32 {
+        let b = (256 + i) << 22;
+        ds.extend([b.wrapping_sub(1), b, b + 1]);
+    }
+    ds.extend((0..200_000u32).map(|k| (1 << 30) + k.wrapping_mul(5_368_709) % (1 << 30)));
+    for d in ds.into_iter().filter(|d| (1 << 30..1 << 31).contains(d)) {
+        assert!(recip62_above_holds(d, recip62_above(d)), "d = {d}");
     }
 }
 

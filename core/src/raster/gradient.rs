@@ -10,8 +10,7 @@
 //! rows before it (bands render bit-identically) and costs one
 //! multiply-add per quantity per span.
 
-use crate::scalar::{normalize_shift, recip62_above};
-use crate::scalar::{shr_to_u32, widening_mul_u32};
+use crate::scalar::{normalize_shift, recip62_floor, widening_mul_u32};
 
 /// Extra fractional bits kept in the gradients beyond the values' own.
 const EXTRA: u32 = 8;
@@ -60,29 +59,33 @@ pub(super) struct Basis {
     pub(super) short: bool,
 }
 
-/// `|A|` (in `[4, 2^31)`) with `r ≈ 2^62/d'`, `d' = |A|·2^s` normalized
+/// `|A|` (in `[8, 2^31)`) with `r ≈ 2^62/d'`, `d' = |A|·2^s` normalized
 /// into `[2^30, 2^31)`: one reciprocal shared by every gradient of a
-/// polygon, so each quotient is one or two 32×32→64 multiplies and a
-/// 32-bit check instead of a 64-bit library division (about 320
-/// instructions a quotient on ARMv6-M, `u64_div_rem` and the `u32_div_rem`
-/// it calls).
+/// polygon, so each quotient is one 32×32→64 multiply and a 32-bit check
+/// instead of a 64-bit library division (about 320 instructions a
+/// quotient on ARMv6-M, `u64_div_rem` and the `u32_div_rem` it calls).
 ///
-/// `r` is [`recip62_above`]`(d')`: `R ≤ r ≤ R + 4` for `R = 2^62/d'`
-/// (for every divisor: `recip62_exhaustive`). Why one correction then
-/// suffices: for
-/// `u < 2^(60−s)` the estimate `⌊u·r / 2^(62−s)⌋` lies in
-/// `[u/|A|, u/|A| + 1)` (`r − R ≤ 4` moves `u·r/2^(62−s)` by at most
-/// `4u·2^s/2^62 < 1`), so it is `⌊u/|A|⌋` or one more, and the sign of
-/// `u − e·|A|` tells which. That difference lies in `(−|A|, |A|)`, within
-/// ±2^31, so its low 32 bits decide: no widening product. In that range
-/// the quotient is below 2^30, and every quotient below 2^29 is in it.
+/// `r` is [`recip62_floor`]`(d')`, capped below 2^32:
+/// `R − 4 ≤ r ≤ R` for `R = 2^62/d'` (for every divisor:
+/// `recip62_exhaustive`). The dividend `u < 2^(32+t)`, `t = 27 − s`, is
+/// first cut to 32 bits, `u' = ⌊u/2^t⌋`, and the estimate is
+/// `e = ⌊u'·r / 2^35⌋`. Since `u/|A| = u·R/2^(62−s)`, that is
+/// `u'·2^t·R/2^(62−s)` less at most `4u'/2^35 < 1/2` (from `r`), and
+/// `u'·2^t` is `u` less at most `2^t − 1`, a quotient error below
+/// `2^t/|A| ≤ 1/8` (`|A| ≥ 2^(30−s)`): `e` lies in
+/// `(u/|A| − 5/8, u/|A|]`, so it is `⌊u/|A|⌋` or one less, and whether
+/// `u − e·|A|` (in `[0, 2|A|)`, below 2^32: its low 32 bits) reaches `|A|`
+/// tells which. The quotient is then below 2^29, and every quotient below
+/// 2^28 is in range (`u < 2^28·2|A| ≤ 2^(32+t)`). (W2 on ARMv6-M: the
+/// previous form, `r` above `R` and the full `u·r` in two widening
+/// multiplies whenever `u ≥ 2^32`, cost 6.83 M instructions per frame.)
 #[derive(Clone, Copy, Debug)]
 pub(super) struct AreaRecip {
     d: u32,
-    /// `30 − s` (at least 2): the estimate is `(u·r / 2^32) >> k`.
-    k: u32,
-    /// In `(2^31, 2^32]`.
-    r: u64,
+    /// `27 − s`, in `[0, 27]`: the bits cut from the dividend.
+    t: u32,
+    /// In `(2^31 − 4, 2^32)`.
+    r: u32,
 }
 
 impl Basis {
@@ -109,51 +112,54 @@ impl Basis {
 }
 
 impl AreaRecip {
-    /// The reciprocal of `|area2|`, if it is in `[4, 2^31)` (slivers of
+    /// The reciprocal of `|area2|`, if it is in `[8, 2^31)` (slivers of
     /// smaller area divide).
     pub(super) fn new(area2: i64) -> Option<Self> {
         let d = area2.unsigned_abs();
-        if !(4..1 << 31).contains(&d) {
+        if !(8..1 << 31).contains(&d) {
             return None;
         }
         let d = d as u32;
-        // s ≤ 28 for d ≥ 4.
+        // s ≤ 27 for d ≥ 8.
         let s = normalize_shift(d);
         Some(Self {
             d,
-            k: 30 - s,
-            r: recip62_above(d << s),
+            t: 27 - s,
+            // At or below R, at most 4 below it; only d' = 2^30 (R = 2^32)
+            // can reach 2^32, and one unit less is still within 4 of R.
+            r: recip62_floor(d << s).min(u32::MAX as u64) as u32,
         })
     }
 
-    /// `⌊u / |A|⌋` when `u < 2^(30+k)` (then below 2^30), else `None`.
+    /// [`Self::new`] with the reciprocal `⌊2^62/d'⌋ − below` instead of
+    /// [`recip62_floor`]'s (which is one of those with `below ≤ 3`): for
+    /// tests that put the estimate at either end of its error bound.
+    #[cfg(test)]
+    pub(super) fn with_floor_less(area2: i64, below: u32) -> Option<Self> {
+        let mut r = Self::new(area2)?;
+        let dn = (r.d as u64) << (27 - r.t);
+        r.r = ((1u64 << 62) / dn).min(u32::MAX as u64) as u32 - below;
+        Some(r)
+    }
+
+    /// `⌊u / |A|⌋` when `u < 2^(32+t)` (then below 2^29), else `None`.
     #[inline]
     fn div_floor(&self, u: u64) -> Option<u64> {
         // Shifts of 32-bit halves only: a variable 64-bit shift is a
         // library call on ARMv6-M.
         let (ul, uh) = (u as u32, (u >> 32) as u32);
-        let k = self.k;
-        if uh >> (k - 2) != 0 {
-            return None; // u ≥ 2^(30+k)
+        let t = self.t;
+        if uh >> t != 0 {
+            return None; // u ≥ 2^(32+t)
         }
-        // h = u·r / 2^32: r = 2^32 gives u; otherwise u < 2^60 and
-        // r < 2^32 keep it below 2^60 + 2^32.
-        let e = if self.r >> 32 != 0 {
-            shr_to_u32(u, k)?
-        } else {
-            let r = self.r as u32;
-            let low = (widening_mul_u32(ul, r) >> 32) as u32;
-            if uh == 0 {
-                // The common case (`u < 2^32`): one widening multiply.
-                low >> k
-            } else {
-                shr_to_u32(widening_mul_u32(uh, r) + low as u64, k)?
-            }
-        };
-        // e = ⌊u/|A|⌋ or one more: u − e·|A| in (−|A|, |A|), exact in
-        // the low 32 bits read as i32.
-        let below = (ul.wrapping_sub(e.wrapping_mul(self.d)) as i32) < 0;
-        Some(u64::from(e - u32::from(below)))
+        // u' = ⌊u / 2^t⌋ < 2^32 (`<< 1 << (31 − t)`: no shift by 32 at t = 0,
+        // where uh = 0).
+        let u1 = (ul >> t) | ((uh << 1) << (31 - t));
+        let e = (widening_mul_u32(u1, self.r) >> 35) as u32;
+        // e = ⌊u/|A|⌋ or one less: u − e·|A| in [0, 2|A|), exact in the
+        // low 32 bits.
+        let short = ul.wrapping_sub(e.wrapping_mul(self.d)) >= self.d;
+        Some(u64::from(e + u32::from(short)))
     }
 
     /// The magnitude of [`div_round`]`(num, den)` for `den = ±|A|` and

@@ -341,7 +341,7 @@ where
         area2: best_area,
         short: reach <= edge::SMALL_COORD_LIMIT as u32,
         // One reciprocal for every plane's two quotients, each then one
-        // or two 32×32→64 multiplies (see `AreaRecip`): W1 on ARMv6-M,
+        // 32×32→64 multiply (see `AreaRecip`): W1 on ARMv6-M,
         // depth alone, 6.65 M instructions per frame with two library
         // divisions per plane, 6.30 M with it. Only where a 64-bit
         // division is a library call: on 64-bit hosts it is one

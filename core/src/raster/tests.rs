@@ -673,13 +673,23 @@ fn shifted_division_edges() {
 /// The shared area reciprocal (`AreaRecip`, the set-up's division for
 /// polygons with two planes or more) against the exact i128 quotient:
 /// whenever it answers it gives `div_round`'s value, and it answers for
-/// every quotient below 2^29 in magnitude (the claim that one correction
-/// step suffices there) and every divisor in `[4, 2^31)`.
+/// every quotient below 2^28 in magnitude (the claim that one correction
+/// step suffices there) and every divisor in `[8, 2^31)`.
 fn check_area_recip(num: i64, den: i64) {
+    check_area_recip_with(num, den, None);
+}
+
+/// [`check_area_recip`] with the reciprocal `⌊2^62/d'⌋ − below` when
+/// `below` is given (`AreaRecip::with_floor_less`), else the set-up's.
+fn check_area_recip_with(num: i64, den: i64, below: Option<u32>) {
     use super::gradient::AreaRecip;
-    let Some(r) = AreaRecip::new(den) else {
+    let r = match below {
+        Some(b) => AreaRecip::with_floor_less(den, b),
+        None => AreaRecip::new(den),
+    };
+    let Some(r) = r else {
         assert!(
-            den.unsigned_abs() < 4 || den.unsigned_abs() >= 1 << 31,
+            den.unsigned_abs() < 8 || den.unsigned_abs() >= 1 << 31,
             "den = {den}"
         );
         return;
@@ -689,7 +699,7 @@ fn check_area_recip(num: i64, den: i64) {
     match r.div_round_magnitude(num.unsigned_abs()) {
         Some(q) => assert_eq!(q, want.unsigned_abs(), "num = {num}, den = {den}"),
         None => assert!(
-            want.unsigned_abs() >= 1 << 29,
+            want.unsigned_abs() >= 1 << 28,
             "num = {num}, den = {den}: no answer for {want}"
         ),
     }
@@ -861,7 +871,7 @@ fn area_recip_edges() {
     }
     for &den in &dens {
         let d = den.unsigned_abs() as i64;
-        // Quotients at and around 2^29 to 2^32, ties, zero, the largest
+        // Quotients at and around 2^28 to 2^32, ties, zero, the largest
         // numerators.
         let mut nums = vec![
             0i64,
@@ -875,7 +885,9 @@ fn area_recip_edges() {
             -(1 << 62) + 1,
         ];
         for q in [
-            1i64 << 29,
+            1i64 << 28,
+            (1 << 28) - 1,
+            1 << 29,
             (1 << 29) - 1,
             1 << 30,
             (1 << 30) - 1,
@@ -891,6 +903,56 @@ fn area_recip_edges() {
         for num in nums {
             if num.unsigned_abs() < 1 << 62 {
                 check_area_recip(num, den);
+            }
+        }
+    }
+}
+
+/// The area reciprocal at its worst: `u = q·|A|` exactly (the quotient's
+/// fraction is 0, so any shortfall of the estimate floors it one lower),
+/// with the low `c` bits of `u` all ones and `q` as large as `u < 2^(32+c)`
+/// allows, for odd divisors of every magnitude (the reciprocal's own
+/// shortfall below `2^62/d'` differs with each), at the range's top
+/// (`c = t = 27 − s`) and one bit beyond it, where the reciprocal must
+/// answer correctly or not at all (the quotients there reach 2^28). A
+/// variant that cuts one bit more (`t = 28 − s`, error bounds 1/4 and 1
+/// instead of 1/8 and 1/2) fails here. Each case runs with the set-up's
+/// reciprocal and with the two ends of the range `recip62_floor` is
+/// documented (and exhaustively checked) to stay in: `⌊2^62/d'⌋` and 3
+/// units below it.
+#[test]
+fn area_recip_worst_cases() {
+    let mut x = 0x9e37_79b9_u32;
+    for i in 0..20_000u32 {
+        x ^= x << 13;
+        x ^= x >> 17;
+        x ^= x << 5;
+        // Odd, in [8, 2^31), every bit length from 4 to 31.
+        let d = ((x >> (i % 28 + 1)) | 9) & 0x7fff_ffff;
+        let s = d.leading_zeros() - 1;
+        // d⁻¹ mod 2^64 by Newton's iteration (d is odd).
+        let mut inv = 1u64;
+        for _ in 0..6 {
+            inv = inv.wrapping_mul(2u64.wrapping_sub((d as u64).wrapping_mul(inv)));
+        }
+        for c in [27 - s, 28 - s] {
+            // q ≡ −d⁻¹ (mod 2^c) makes q·d ≡ −1: its low c bits all ones.
+            let m = (1u64 << c) - 1;
+            let q0 = inv.wrapping_neg() & m;
+            let top = ((1u64 << (32 + c)) - 1) / d as u64;
+            if top < q0 {
+                continue;
+            }
+            let q = q0 + ((top - q0) >> c << c);
+            let u = q * d as u64;
+            assert_eq!(u & m, m, "d = {d}");
+            // div_round_magnitude(u − ⌊d/2⌋) divides u: the rounding of
+            // (u − ⌊d/2⌋)/d, q exactly.
+            let num = (u - (d / 2) as u64) as i64;
+            for below in [None, Some(0), Some(3)] {
+                check_area_recip_with(num, d as i64, below);
+                check_area_recip_with(num + 1, d as i64, below);
+                check_area_recip_with(-num, -(d as i64), below);
             }
         }
     }

@@ -31,12 +31,14 @@ pub(crate) use fixed_point::normalize_shift;
     any(test, all(target_arch = "arm", not(target_has_atomic = "ptr")))
 ))]
 pub(crate) use fixed_point::shr_u64;
-pub(crate) use fixed_point::{shr_to_u32, widening_mul, widening_mul_u32};
+pub(crate) use fixed_point::{widening_mul, widening_mul_u32};
 mod float;
 mod float_math;
 pub(crate) mod predicates;
 mod recip;
-pub(crate) use recip::{recip62, recip62_above, recip62_floor};
+#[cfg(any(test, feature = "perspective"))]
+pub(crate) use recip::recip62_above;
+pub(crate) use recip::{recip62, recip62_floor};
 
 pub use fixed_point::{Fx, I2F30, I16F16, I20F12, I24F8};
 

@@ -60,7 +60,8 @@ pub(crate) fn recip62(d: u32) -> u64 {
 /// 3 units below its floor, for `d` in `[2^30, 2^31)` (other `d` are
 /// clamped into the range; both bounds are checked for every `d` by
 /// `recip62_exhaustive`). For callers that check their quotients against
-/// the divisor anyway (`perspective16`): they take the last units there.
+/// the divisor anyway (`perspective16`, the raster's gradient set-up):
+/// they take the last units there.
 #[inline]
 pub(crate) fn recip62_floor(d: u32) -> u64 {
     let d = d.clamp(1 << 30, (1 << 31) - 1);
@@ -81,11 +82,12 @@ pub(crate) fn recip62_floor(d: u32) -> u64 {
 /// most 2^32, for `d` in `[2^30, 2^31)` (others are clamped): what a
 /// caller needs whose estimate `⌊u·r / 2^k⌋` must never fall below the
 /// quotient and exceed it by less than one while `4u/2^k < 1`, so that one
-/// 32-bit check of the remainder's sign corrects it (the raster's gradient
-/// set-up and perspective divide). [`recip62_floor`] is at or below `R`
+/// 32-bit check of the remainder's sign corrects it (the raster's
+/// perspective divide). [`recip62_floor`] is at or below `R`
 /// and less than 4 below it, so adding 4 gives `R < r ≤ R + 4`; the cap
 /// at 2^32 takes effect only at `d = 2^30`, where `R = 2^32` exactly and
 /// `r = R`.
+#[cfg(any(test, feature = "perspective"))]
 #[inline]
 pub(crate) fn recip62_above(d: u32) -> u64 {
     (recip62_floor(d) + 4).min(1 << 32)

@@ -382,20 +382,22 @@ where
     let small_triangle = sorted.filter(|_| reach <= edge::SMALL_COORD_LIMIT as u32);
     // Every plane by the 32-bit route ([`Gradient::span_tiny`]) when each
     // fits this triangle's extent around the basis origin (vertex 0): the
-    // same values as the general route, decided once per triangle. Not on
-    // 64-bit hosts, where a 64-bit product is one instruction.
-    let tiny = (cfg!(test) || !cfg!(target_pointer_width = "64"))
-        && match small_triangle {
-            Some([a, b, c]) => {
-                let d = |p: &ScreenVertex<VARYINGS>| {
-                    (p.x - a.x).unsigned_abs().max((p.y - a.y).unsigned_abs())
-                };
-                let ext = d(b).max(d(c));
-                (!Z::ENABLED || zgrad.fits::<false>(ext))
-                    && (solid.is_some() || vgrad.iter().all(|g| g.fits::<true>(ext)))
-            }
-            None => false,
-        };
+    // same values as the general route, decided once per triangle. On
+    // every target: on x86-64 too, where a 64-bit product is one
+    // instruction, it is the shorter span set-up (W1/W2 callgrind Ir per
+    // frame 3.42 M / 4.15 M with the general route only, 3.34 M / 4.06 M
+    // with this one).
+    let tiny = match small_triangle {
+        Some([a, b, c]) => {
+            let d = |p: &ScreenVertex<VARYINGS>| {
+                (p.x - a.x).unsigned_abs().max((p.y - a.y).unsigned_abs())
+            };
+            let ext = d(b).max(d(c));
+            (!Z::ENABLED || zgrad.fits::<false>(ext))
+                && (solid.is_some() || vgrad.iter().all(|g| g.fits::<true>(ext)))
+        }
+        None => false,
+    };
 
     // One span: `[min(xa, xb), max(xa, xb))` of row `y`, scissored. The
     // same ceil formula serves left and right edges (first center at or

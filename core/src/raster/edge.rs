@@ -17,7 +17,7 @@ pub(super) fn ceil_div(n: i64, d: i64) -> (i64, i64) {
     // One truncating division: n = q·d + r with |r| < d and r of n's
     // sign. r > 0: the ceiling is q + 1 with remainder d − r; r ≤ 0: it
     // is q with remainder −r. (No overflow: d > 0 and |n| < 2^63.)
-    let (q, r) = (n / d, n % d);
+    let (q, r) = crate::scalar::div_rem_i64(n, d);
     if r > 0 { (q + 1, d - r) } else { (q, -r) }
 }
 

@@ -10,7 +10,7 @@
 //! rows before it (bands render bit-identically) and costs one
 //! multiply-add per quantity per span.
 
-use crate::scalar::{normalize_shift, recip62_floor, widening_mul_u32};
+use crate::scalar::{div_rem_i64, div_rem_u64, normalize_shift, recip62_floor, widening_mul_u32};
 
 /// Extra fractional bits kept in the gradients beyond the values' own.
 const EXTRA: u32 = 8;
@@ -382,7 +382,7 @@ impl Gradient {
 fn clamped(start: i64, end: i64, n: i64, lo: i64, hi: i64) -> (i32, i32) {
     let s = start.clamp(lo, hi);
     let e = end.clamp(lo, hi);
-    let step = if n > 0 { (e - s) / n } else { 0 };
+    let step = if n > 0 { div_rem_i64(e - s, n).0 } else { 0 };
     (s as i32, step as i32)
 }
 
@@ -432,7 +432,7 @@ pub(super) fn mul_short(d: i32, e: i32) -> i64 {
 pub(super) fn div_round_shifted(v: i64, den: i64) -> i64 {
     let (u, d) = (v.unsigned_abs(), den.unsigned_abs());
     let negative = (v < 0) != (den < 0);
-    let q = match u.checked_div(d).zip(u.checked_rem(d)) {
+    let q = match (d != 0).then(|| div_rem_u64(u, d)) {
         None => u64::MAX, // den = 0
         Some((mut q, mut r)) => {
             for _ in 0..EXTRA {
@@ -468,6 +468,6 @@ pub(super) fn div_round(num: i64, den: i64) -> i64 {
     // line: inlined into the set-up, W1 gained a little more but W2 lost
     // 0.5 % on ARMv6-M.
     let d = den.unsigned_abs();
-    let q = ((num.unsigned_abs() + d / 2) / d) as i64;
+    let q = div_rem_u64(num.unsigned_abs() + d / 2, d).0 as i64;
     if (num < 0) != (den < 0) { -q } else { q }
 }

@@ -150,8 +150,7 @@ impl<Frac: LeEqU32> Fx<Frac> {
     fn div_wide(a: i32, b: i32) -> i64 {
         let n = (a as i64) << Self::FRAC;
         let d = b as i64;
-        let q = n / d;
-        let r = n % d;
+        let (q, r) = super::div_rem_i64(n, d);
         // Round half away from zero.
         if 2 * r.unsigned_abs() >= d.unsigned_abs() {
             if (n < 0) == (d < 0) { q + 1 } else { q - 1 }

@@ -32,6 +32,8 @@ pub(crate) use fixed_point::normalize_shift;
 ))]
 pub(crate) use fixed_point::shr_u64;
 pub(crate) use fixed_point::{widening_mul, widening_mul_u32};
+mod div;
+pub(crate) use div::{div_rem_i64, div_rem_u64};
 mod float;
 mod float_math;
 pub(crate) mod predicates;

@@ -223,7 +223,7 @@ pub(crate) fn face_direction<S: Scalar>(
     }
     let sign = if flip { -1 } else { 1 };
     let unit = S::from_f32(INV_2_14);
-    let c = |v: i64| S::from_i32((sign * (v << 14) / m) as i32) * unit;
+    let c = |v: i64| S::from_i32(crate::scalar::div_rem_i64(sign * (v << 14), m).0 as i32) * unit;
     Some(Vec3::new(c(n[0]), c(n[1]), c(n[2])))
 }
 

@@ -371,7 +371,9 @@ impl MeshData<'_> {
         let sign = if flip { -1 } else { 1 };
         let unit = S::from_f32(1.0 / 16384.0);
         for &tri in self.triangles {
-            let c = cross(tri).map(|v| S::from_i32((sign * (v << 14) / m) as i32) * unit);
+            let c = cross(tri).map(|v| {
+                S::from_i32(crate::scalar::div_rem_i64(sign * (v << 14), m).0 as i32) * unit
+            });
             let d = Vec3::new(c[0], c[1], c[2]);
             for &k in &tri {
                 if let Some(v) = out.get_mut(k as usize) {

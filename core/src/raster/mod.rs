@@ -458,7 +458,7 @@ where
                     if let Some(pixels) = target.span_mut(y, x, len) {
                         // Depth test and write fused in one loop.
                         if let Some(c) = solid {
-                            depth.test_write(y, x, z, dz, pixels, |_| c);
+                            depth.test_fill(y, x, z, dz, pixels, c);
                         } else {
                             depth.test_write(y, x, z, dz, pixels, |i| shader.color(&at(i)));
                         }

@@ -736,6 +736,65 @@ fn mul_short_is_the_exact_product() {
     }
 }
 
+/// The route `Gradient::new` takes on 32-bit targets when the shared
+/// reciprocal answers both quotients (64-bit hosts skip it, so it is
+/// checked here directly): `quotient_recip` is `Basis::quotient` whenever
+/// it answers, and `from_small_quotients` builds the plane
+/// `from_quotients` builds, every field, for gradients below 2^29. The
+/// bases are short triangles of every size and the numerators of every
+/// magnitude the short route makes (below 2^47); the reciprocal must
+/// answer most of them, or the check would say little.
+#[test]
+fn small_quotients_are_the_general_route() {
+    use super::gradient::{AreaRecip, Basis, Gradient};
+    let mut rng = crate::test_util::Rng::new(5);
+    let (mut asked, mut answered) = (0u32, 0u32);
+    for _ in 0..20_000 {
+        let size = rng.int(1, 14) as u32;
+        let c = |rng: &mut crate::test_util::Rng| rng.int(-(1 << size), 1 << size) as i32;
+        let p = [
+            (c(&mut rng), c(&mut rng)),
+            (c(&mut rng), c(&mut rng)),
+            (c(&mut rng), c(&mut rng)),
+        ];
+        let area2 = (p[1].0 - p[0].0) as i64 * (p[2].1 - p[0].1) as i64
+            - (p[1].1 - p[0].1) as i64 * (p[2].0 - p[0].0) as i64;
+        let Some(recip) = AreaRecip::new(area2) else {
+            continue;
+        };
+        let basis = Basis {
+            p,
+            area2,
+            recip: Some(recip),
+            short: true,
+        };
+        for _ in 0..4 {
+            let bits = rng.int(0, 47) as u32;
+            let v = rng.int(-(1 << bits), 1 << bits);
+            asked += 1;
+            if let Some(q) = basis.quotient_recip(v) {
+                answered += 1;
+                assert_eq!(q as i64, basis.quotient(v), "v {v}, area2 {area2}");
+                assert!(q.unsigned_abs() < 1 << 29, "v {v}, area2 {area2}: {q}");
+            }
+        }
+        let g = |rng: &mut crate::test_util::Rng| rng.int(-(1 << 29) + 1, (1 << 29) - 1) as i32;
+        let (a0, gx, gy) = (
+            rng.int(i32::MIN as i64, i32::MAX as i64) as i32,
+            g(&mut rng),
+            g(&mut rng),
+        );
+        let (gx, gy) = (gx >> rng.int(0, 29), gy >> rng.int(0, 29));
+        let small = Gradient::from_small_quotients(a0, gx, gy, p[0].0, p[0].1);
+        let general = Gradient::from_quotients(a0, gx as i64, gy as i64, p[0].0, p[0].1);
+        assert_eq!(std::format!("{small:?}"), std::format!("{general:?}"));
+    }
+    assert!(
+        answered > asked / 2,
+        "the reciprocal answered {answered} of {asked}"
+    );
+}
+
 proptest! {
     /// The set-up's short route (two-multiply products for short edges,
     /// with or without the shared area reciprocal) gives the same plane

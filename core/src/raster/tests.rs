@@ -738,8 +738,8 @@ fn mul_short_is_the_exact_product() {
 
 /// The route `Gradient::new` takes on 32-bit targets when the shared
 /// reciprocal answers both quotients (64-bit hosts skip it, so it is
-/// checked here directly): `quotient_recip` is `Basis::quotient` whenever
-/// it answers, and `from_small_quotients` builds the plane
+/// checked here directly): `quotient_recip` gives the divided quotient
+/// (`quotient_divided`) whenever it answers, and `from_small_quotients` builds the plane
 /// `from_quotients` builds, every field, for gradients below 2^29. The
 /// bases are short triangles of every size and the numerators of every
 /// magnitude the short route makes (below 2^47); the reciprocal must
@@ -774,7 +774,7 @@ fn small_quotients_are_the_general_route() {
             asked += 1;
             if let Some(q) = basis.quotient_recip(v) {
                 answered += 1;
-                assert_eq!(q as i64, basis.quotient(v), "v {v}, area2 {area2}");
+                assert_eq!(q as i64, basis.quotient_divided(v), "v {v}, area2 {area2}");
                 assert!(q.unsigned_abs() < 1 << 29, "v {v}, area2 {area2}: {q}");
             }
         }

@@ -484,7 +484,7 @@ fn recip62_is_the_exact_ceiling() {
 
 #[test]
 fn normalize_shift_is_leading_zeros_less_one() {
-    use super::fixed_point::normalize_shift;
+    use super::fixed_point::{normalize_shift, normalize_shift_smeared};
     let mut ds: Vec<u32> = Vec::new();
     for k in 0..31 {
         ds.extend([1u32 << k, (1u32 << k) | 1, (2u32 << k) - 1]);
@@ -498,6 +498,7 @@ fn normalize_shift_is_leading_zeros_less_one() {
     }
     for d in ds {
         assert_eq!(normalize_shift(d), d.leading_zeros() - 1, "d = {d}");
+        assert_eq!(normalize_shift_smeared(d), d.leading_zeros() - 1, "d = {d}");
     }
 }
 

@@ -387,10 +387,20 @@ where
     // instruction, it is the shorter span set-up (W1/W2 callgrind Ir per
     // frame 3.42 M / 4.15 M with the general route only, 3.34 M / 4.06 M
     // with this one).
+    //
+    // The extent is measured from the basis origin `bv[0]`, from which
+    // the spans' pixel centers are measured (`px`, `py` below), not from
+    // the top vertex: measured from the top vertex (before stop 29), a
+    // triangle whose vertex 0 lies elsewhere could pass with pixel
+    // centers up to twice the extent from the origin, and the 32-bit
+    // start overflowed (found by the proptest
+    // `fused_depth_write_matches_runs`; its case is kept in
+    // `proptest-regressions`).
     let tiny = match small_triangle {
-        Some([a, b, c]) => {
+        Some(_) => {
+            let [o, b, c] = bv;
             let d = |p: &ScreenVertex<VARYINGS>| {
-                (p.x - a.x).unsigned_abs().max((p.y - a.y).unsigned_abs())
+                (p.x - o.x).unsigned_abs().max((p.y - o.y).unsigned_abs())
             };
             let ext = d(b).max(d(c));
             (!Z::ENABLED || zgrad.fits::<false>(ext))

@@ -273,19 +273,15 @@ impl<C: Copy> Target for Band<'_, C> {
     }
 }
 
-/// `row.fill(color)`, several stores per loop iteration: on Cortex-M0,
-/// where `slice::fill` of 16-bit pixels compiles to a store plus three
-/// instructions of loop per pixel, eight stores roughly halved the flat
-/// fill's instructions per pixel (`bash tests/mcu/run`, `ipp flat`).
-///
-/// On Arm, sixteen stores and out of line: inlined into the scan
-/// converter it took registers from the row walk. Instructions per
-/// frame, eight stores inlined -> sixteen out of line: W1/W2 on ARMv6-M
-/// 5.47 M / 6.43 M -> 5.43 M / 6.40 M, on the Cortex-M4 (f32) 3.58 M /
-/// 4.23 M -> 3.53 M / 4.20 M; `ipp flat` on ARMv6-M 1.64 -> 1.46. An
-/// x86-64 host keeps eight stores inlined, which LLVM turns into vector
-/// stores: sixteen, inlined or not, cost its W1 2.6-2.7 %.
-#[cfg(target_arch = "arm")]
+/// `row.fill(color)`, sixteen stores per loop iteration, out of line: on
+/// Cortex-M0, where `slice::fill` of 16-bit pixels compiles to a store
+/// plus three instructions of loop per pixel, eight stores inlined
+/// roughly halved the flat fill's instructions per pixel (`bash
+/// tests/mcu/run`, `ipp flat`); sixteen out of line, which leaves the
+/// scan converter its registers, took W1/W2 per frame on ARMv6-M from
+/// 5.47 M / 6.43 M to 5.43 M / 6.40 M and on the Cortex-M4 (f32) from
+/// 3.58 M / 4.23 M to 3.53 M / 4.20 M, and `ipp flat` on ARMv6-M from
+/// 1.64 to 1.46. (x86-64 W1, callgrind: 3 278 675 -> 3 282 018.)
 #[inline(never)]
 fn fill_unrolled<C: Copy>(row: &mut [C], color: C) {
     let mut chunks = row.chunks_exact_mut(16);
@@ -295,20 +291,6 @@ fn fill_unrolled<C: Copy>(row: &mut [C], color: C) {
             (*f, *g, *h, *i) = (color, color, color, color);
             (*j, *k, *l, *m) = (color, color, color, color);
             (*n, *o, *p, *q) = (color, color, color, color);
-        }
-    }
-    chunks.into_remainder().fill(color);
-}
-
-/// [`fill_unrolled`] with eight stores, inlined (see the Arm version).
-#[cfg(not(target_arch = "arm"))]
-#[inline]
-fn fill_unrolled<C: Copy>(row: &mut [C], color: C) {
-    let mut chunks = row.chunks_exact_mut(8);
-    for c in &mut chunks {
-        if let [a, b, d, e, f, g, h, i] = c {
-            (*a, *b, *d, *e) = (color, color, color, color);
-            (*f, *g, *h, *i) = (color, color, color, color);
         }
     }
     chunks.into_remainder().fill(color);

@@ -399,17 +399,13 @@ impl<K: StoredDepth> DepthBuffer<'_, K> {
         pixels: &mut [C],
         mut color: F,
     ) {
-        let len = u32::try_from(pixels.len()).unwrap_or(u32::MAX);
-        let band = &mut self.keys;
-        if let Some(keys) = band
-            .layout
-            .span_exact(y, x, len)
-            .and_then(|r| band.buf.get_mut(r))
-        {
+        if let Some(keys) = self.exact_keys(y, x, pixels.len()) {
             // The whole span is inside (the scan converter's case).
             fused_run(keys, pixels, z, dz, color);
             return;
         }
+        let len = u32::try_from(pixels.len()).unwrap_or(u32::MAX);
+        let band = &mut self.keys;
         let Some((skip, r)) = band.layout.span(y, x, len) else {
             return;
         };

@@ -390,7 +390,7 @@ where
     //
     // The extent is measured from the basis origin `bv[0]`, from which
     // the spans' pixel centers are measured (`px`, `py` below), not from
-    // the top vertex: measured from the top vertex (before stop 29), a
+    // the top vertex: measured from the top vertex (as it once was), a
     // triangle whose vertex 0 lies elsewhere could pass with pixel
     // centers up to twice the extent from the origin, and the 32-bit
     // start overflowed (found by the proptest

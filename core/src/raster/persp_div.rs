@@ -36,10 +36,11 @@ pub(crate) const EXACT_BELOW: u64 = 1 << 29;
 pub(crate) fn divide(v: &[i32; 3]) -> (i64, i64) {
     // q in [1, 2^31); s in [0, 30].
     let q = v[2].max(1) as u32;
+    let s = crate::scalar::normalize_shift(q);
     #[cfg(all(target_arch = "arm", not(target_has_atomic = "ptr")))]
-    let (s, mag) = (crate::scalar::normalize_shift(q), mag_halves);
+    let mag = mag_halves;
     #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
-    let (s, mag) = (q.leading_zeros() - 1, mag_wide);
+    let mag = mag_wide;
     let r = recip62_above(q << s);
     let sh = 62 - PERSPECTIVE_Q_BITS - s;
     let one = |x: i32| -> i64 {

@@ -1007,7 +1007,7 @@ impl<Frac: LeEqU32 + 'static> Scalar for Fx<Frac> {
         if dm == 0 || dm >= 1 << 31 {
             return nums.map(|n| n.checked_div(d));
         }
-        let s = dm.leading_zeros() - 1;
+        let s = normalize_shift(dm);
         let sh = 62 - f as i32 - s as i32;
         if sh < 0 {
             return nums.map(|n| n.checked_div(d));

@@ -335,6 +335,13 @@ impl<S: Scalar> Pipeline<S> {
         self
     }
 
+    /// Whether the guard-band rectangle lies within ±(2^14 − 1) in 28.4
+    /// (see the field): then every triangle whose vertices are all inside
+    /// the volume is within the scan converter's 32-bit walk.
+    pub(crate) fn guard_small(&self) -> bool {
+        self.guard_small
+    }
+
     /// The clip volume.
     #[must_use]
     pub fn frustum(&self) -> &Frustum<S> {

@@ -261,9 +261,55 @@ where
     Z: DepthTest,
     Sh: SpanShader<VARYINGS, Color = T::Color>,
 {
+    fill::<T, Z, Sh, VARYINGS, true>(target, depth, shader, verts)
+}
+
+/// [`fill_polygon`] for a triangle whose vertices all lie within
+/// ±[`SMALL_COORD_LIMIT`](edge::SMALL_COORD_LIMIT) (2^14 in 28.4, ±1024
+/// pixels), which the 32-bit walk covers: the same pixels, without the
+/// 64-bit chain walk that polygons and larger triangles take, so a
+/// firmware that draws only such triangles does not link it (the flat
+/// cube firmware on thumbv6m: 1.3 KB less). Any other triangle is
+/// [`Rejected`](FillOutcome::Rejected) and nothing is drawn.
+/// [`Frame::draw_unclipped`](crate::scene::Frame::draw_unclipped) calls
+/// it for the triangles that need no clipping, whose vertices lie in a
+/// guard band within that bound.
+pub(crate) fn fill_small_triangle<T, Z, Sh, const VARYINGS: usize>(
+    target: &mut T,
+    depth: &mut Z,
+    shader: &Sh,
+    verts: &[ScreenVertex<VARYINGS>; 3],
+) -> FillOutcome
+where
+    T: Target,
+    Z: DepthTest,
+    Sh: SpanShader<VARYINGS, Color = T::Color>,
+{
+    fill::<T, Z, Sh, VARYINGS, false>(target, depth, shader, verts)
+}
+
+/// [`fill_polygon`]'s body. Without `POLYGONS` only triangles within
+/// ±[`SMALL_COORD_LIMIT`](edge::SMALL_COORD_LIMIT) are drawn (the 32-bit
+/// walk) and anything else is rejected before any pixel is written, so
+/// the chain walk and its 64-bit edges are left out.
+#[inline(always)]
+fn fill<T, Z, Sh, const VARYINGS: usize, const POLYGONS: bool>(
+    target: &mut T,
+    depth: &mut Z,
+    shader: &Sh,
+    verts: &[ScreenVertex<VARYINGS>],
+) -> FillOutcome
+where
+    T: Target,
+    Z: DepthTest,
+    Sh: SpanShader<VARYINGS, Color = T::Color>,
+{
     let n = verts.len();
     if n < 3 {
         return FillOutcome::Empty;
+    }
+    if !POLYGONS && n != 3 {
+        return FillOutcome::Rejected;
     }
     // A triangle (most of a mesh) is sorted top to bottom once, by
     // reference (swapping the vertices themselves moved their varyings
@@ -294,7 +340,7 @@ where
         }
         (None, top_y, bottom_y, reach)
     };
-    if reach > COORD_LIMIT as u32 {
+    if reach > COORD_LIMIT as u32 || (!POLYGONS && reach > edge::SMALL_COORD_LIMIT as u32) {
         return FillOutcome::Rejected;
     }
     let mut clip = target.clip_rect();
@@ -509,7 +555,7 @@ where
         };
         (long, short, lower_at, [m.x, m.y, b.x, b.y])
     });
-    let mut chains = if tri.is_none() {
+    let mut chains = if POLYGONS && tri.is_none() {
         // The first vertex on the top row and the first on the bottom row.
         let first_at = |y: i32| verts.iter().position(|v| v.y == y).unwrap_or(0);
         let (top, bottom) = (first_at(top_y), first_at(bottom_y));

@@ -1508,3 +1508,59 @@ proptest! {
         prop_assert_eq!(ca, cb);
     }
 }
+
+proptest! {
+    /// The triangle-only entry draws what `fill_polygon` draws for a
+    /// triangle within ±2^14 (28.4) and rejects any other before writing
+    /// a pixel (its documented bound, not the code's constant).
+    #[test]
+    fn small_triangle_fill_is_fill_polygon(
+        wide in proptest::collection::vec((-(1i32 << 14) - 40..(1 << 14) + 40, -(1i32 << 14) - 40..(1 << 14) + 40), 3),
+        near in proptest::collection::vec((-100i32..700, -100i32..700), 3),
+        pick_near in any::<bool>(),
+    ) {
+        let pts = if pick_near { &near } else { &wide };
+        let tri: [ScreenVertex<0>; 3] =
+            core::array::from_fn(|k| ScreenVertex::new(pts[k].0, pts[k].1, 0, []));
+        let (mut want_t, mut got_t) = (MockTarget::new(32, 32), MockTarget::new(32, 32));
+        let want = fill_polygon(&mut want_t, &mut NoDepth, &Flat('#'), &tri);
+        let got = fill_small_triangle(&mut got_t, &mut NoDepth, &Flat('#'), &tri);
+        let bound = 1u32 << 14;
+        if tri.iter().all(|v| v.x.unsigned_abs() <= bound && v.y.unsigned_abs() <= bound) {
+            prop_assert_eq!(got, want);
+            prop_assert_eq!(&got_t.px, &want_t.px);
+        } else {
+            prop_assert_eq!(got, FillOutcome::Rejected);
+            prop_assert!(got_t.px.iter().all(|&c| c == '.'));
+        }
+    }
+}
+
+/// `fill_small_triangle`'s bound, at the bound: a vertex at 2^14 (28.4)
+/// is drawn as `fill_polygon` draws it, one unit beyond is rejected.
+#[test]
+fn small_triangle_bound_is_inclusive() {
+    let limit = 1 << 14;
+    let v = |x: i32, y: i32| ScreenVertex::<0>::new(x, y, 0, []);
+    for (reach, inside) in [
+        (limit, true),
+        (limit + 1, false),
+        (-limit, true),
+        (-limit - 1, false),
+    ] {
+        for tri in [
+            [v(0, 0), v(reach, 0), v(0, 32 * 16)],
+            [v(0, 0), v(0, reach), v(32 * 16, 0)],
+        ] {
+            let (mut want_t, mut got_t) = (MockTarget::new(32, 32), MockTarget::new(32, 32));
+            let want = fill_polygon(&mut want_t, &mut NoDepth, &Flat('#'), &tri);
+            let got = fill_small_triangle(&mut got_t, &mut NoDepth, &Flat('#'), &tri);
+            if inside {
+                assert_eq!((got, &got_t.px), (want, &want_t.px), "{reach}");
+            } else {
+                assert_eq!(got, FillOutcome::Rejected, "{reach}");
+                assert!(got_t.px.iter().all(|&c| c == '.'));
+            }
+        }
+    }
+}

@@ -104,6 +104,20 @@ pub enum SceneError {
         /// Sphere index in the scene.
         sphere: usize,
     },
+    /// [`Frame::draw_unclipped`](super::Frame::draw_unclipped) was given
+    /// a frame in which a triangle of this object crosses a plane of the
+    /// view volume (or uses a vertex that cannot be projected): it needs
+    /// the clipper of [`Frame::draw`](super::Frame::draw).
+    NeedsClipping {
+        /// Object index in the scene (the first such object).
+        object: usize,
+    },
+    /// [`Frame::draw_unclipped`](super::Frame::draw_unclipped) covers
+    /// guard bands within ±1024 pixels (its 32-bit triangle walk): a
+    /// viewport up to 1007 pixels a side with the pipeline's 16-pixel
+    /// band. This viewport's is wider; draw it with
+    /// [`Frame::draw`](super::Frame::draw).
+    ViewportTooLarge,
 }
 
 impl fmt::Display for SceneError {
@@ -166,6 +180,13 @@ impl fmt::Display for SceneError {
                 )
             }
             Self::BadSphere { sphere } => write!(f, "sphere {sphere}: bad center or radius"),
+            Self::NeedsClipping { object } => write!(
+                f,
+                "object {object}: a triangle crosses the view volume's boundary; draw the frame with Frame::draw, which clips"
+            ),
+            Self::ViewportTooLarge => f.write_str(
+                "the viewport's guard band reaches beyond 1024 pixels: draw the frame with Frame::draw"
+            ),
         }
     }
 }
@@ -184,6 +205,7 @@ impl SceneError {
             Self::BadPose { .. } => Self::BadPose { object },
             Self::AttributeCount { .. } => Self::AttributeCount { object },
             Self::IndexOutOfRange { triangle, .. } => Self::IndexOutOfRange { object, triangle },
+            Self::NeedsClipping { .. } => Self::NeedsClipping { object },
             e => e,
         }
     }

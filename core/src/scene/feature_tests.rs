@@ -13,6 +13,7 @@ use crate::pipeline::{Pipeline, Vertex};
 use crate::raster::{FillOutcome, Flat, NoDepth};
 use crate::scalar::{I16F16, Scalar};
 use crate::target::Framebuffer;
+use crate::transform::{Euler, Pose};
 use std::vec;
 
 const SENTINEL: Color = Color::new(1, 2, 3);
@@ -371,4 +372,98 @@ fn triangle_hash_is_fnv1a_of_the_index_bytes() {
     let mut swapped = tris.to_vec();
     swapped[0].swap(0, 1);
     assert_ne!(triangle_hash(&swapped), fnv);
+}
+
+/// Renders `scene` at `w`×`h` without a depth buffer with [`Frame::draw`]
+/// (`unclipped` false) or [`Frame::draw_unclipped`], over a sentinel;
+/// returns the draw's result, whether the frame needed clipping, and the
+/// pixels.
+#[allow(clippy::type_complexity)]
+fn draw_either(
+    scene: &Scene<'_>,
+    w: u16,
+    h: u16,
+    unclipped: bool,
+) -> (Result<RasterStats, SceneError>, bool, std::vec::Vec<Color>) {
+    let mut px = vec![SENTINEL; w as usize * h as usize];
+    let mut fb = Framebuffer::new(&mut px, w, h, w as usize).unwrap();
+    let (r, needs) = with_frame::<I16F16, _>(scene, w, h, |f| {
+        let r = if unclipped {
+            f.draw_unclipped(&mut fb, &mut NoDepth)
+        } else {
+            Ok(f.draw(&mut fb, &mut NoDepth))
+        };
+        (r, f.needs_clipping())
+    })
+    .unwrap();
+    (r, needs, px)
+}
+
+/// The cube alone stays in view; `draw_unclipped` draws what `draw` does,
+/// also with a second cube behind the camera (every vertex outside the
+/// near plane: dropped without the clipper, so the frame needs none).
+#[test]
+fn draw_unclipped_draws_what_draw_does() {
+    let cube = CUBE.objects[1];
+    // The eye is at (3, 2.5, 5) looking at the origin: (9, 7.5, 15) is
+    // far behind it.
+    let behind = SceneObject {
+        pose: Pose::new(Vec3::new(9.0, 7.5, 15.0), Euler::new(0.0, 0.0, 0.0)),
+        ..cube
+    };
+    let alone = [cube];
+    let with_behind = [cube, behind];
+    for objects in [&alone[..], &with_behind[..]] {
+        let scene = Scene { objects, ..CUBE };
+        for (w, h) in [(64, 48), (320, 240), (1007, 700)] {
+            let (want, needs, want_px) = draw_either(&scene, w, h, false);
+            let (got, needs_u, got_px) = draw_either(&scene, w, h, true);
+            assert!(!needs && !needs_u, "{w}x{h}: the cube stays in view");
+            let want = want.unwrap();
+            assert!(want.drawn > 0 && want.clipped == 0, "{want:?}");
+            assert_eq!(got, Ok(want), "{w}x{h}");
+            assert!(got_px == want_px, "{w}x{h}: pixels differ");
+        }
+    }
+}
+
+/// A frame with a triangle across a plane is refused whole: the error
+/// names the first such object, and not one pixel (not even the
+/// background) is written. So is a viewport beyond the 32-bit walk.
+#[test]
+fn draw_unclipped_refuses_what_needs_the_clipper() {
+    // The cube scene's floor (object 0) reaches past the view's sides.
+    let (r, needs, px) = draw_either(&CUBE, 64, 48, true);
+    assert!(needs);
+    assert_eq!(r, Err(SceneError::NeedsClipping { object: 0 }));
+    assert!(px.iter().all(|&c| c == SENTINEL));
+    let (drawn, _, _) = draw_either(&CUBE, 64, 48, false);
+    assert!(drawn.unwrap().clipped > 0, "draw clips the floor");
+
+    // A second cube around the eye crosses the near plane.
+    let cube = CUBE.objects[1];
+    let at_eye = SceneObject {
+        pose: Pose::new(Vec3::new(3.0, 2.5, 5.0), Euler::new(0.0, 0.0, 0.0)),
+        ..cube
+    };
+    let objects = [cube, at_eye];
+    let scene = Scene {
+        objects: &objects,
+        ..CUBE
+    };
+    let (r, needs, px) = draw_either(&scene, 64, 48, true);
+    assert!(needs);
+    assert_eq!(r, Err(SceneError::NeedsClipping { object: 1 }));
+    assert!(px.iter().all(|&c| c == SENTINEL));
+
+    // 1008 pixels and the 16-pixel guard band: 1024 pixels, 2^14 in 28.4.
+    let alone = [cube];
+    let scene = Scene {
+        objects: &alone,
+        ..CUBE
+    };
+    let (r, needs, px) = draw_either(&scene, 1008, 700, true);
+    assert!(!needs);
+    assert_eq!(r, Err(SceneError::ViewportTooLarge));
+    assert!(px.iter().all(|&c| c == SENTINEL));
 }

@@ -37,6 +37,7 @@ use crate::raster::Gouraud;
 use crate::raster::PerspectiveTexture;
 use crate::raster::{
     DepthTest, FillOutcome, Flat, ScalableColor, ScreenVertex, SpanShader, fill_polygon,
+    fill_small_triangle,
 };
 use crate::scalar::Scalar;
 use crate::target::{Rect, Target};
@@ -289,7 +290,8 @@ impl<S: Scalar> Renderer<S> {
             });
         }
         let mut first = 0;
-        for obj in objects.iter_mut() {
+        let mut clipping = None;
+        for (index, obj) in objects.iter_mut().enumerate() {
             let rot = obj.pose.angles.to_mat3();
             let to_world = crate::math::Affine3::new(rot, obj.pose.origin);
             let to_view = self.view.camera.world_to_view().mul_affine(&to_world);
@@ -300,6 +302,8 @@ impl<S: Scalar> Renderer<S> {
             let pipe = &self.pipeline;
             let points = to_view.for_points();
             let pos = |k: usize| points.apply(mesh.positions()[k]);
+            // The OR of the object's outcodes, for `needs_clipper`.
+            let mut outside = 0;
             match obj.material {
                 #[cfg(feature = "gouraud")]
                 Material::Gouraud(_) => {
@@ -309,12 +313,14 @@ impl<S: Scalar> Renderer<S> {
                         let n = mesh.vertex_normals().get(k).copied().unwrap_or_default();
                         let i = light.intensity(n);
                         *o = pipe.project_vertex(&Vertex::new(pos(k), Intensity(i)));
+                        outside |= o.outcode;
                     }
                 }
                 #[cfg(feature = "perspective")]
                 Material::Texture { mode, .. } if mode != super::TextureMode::Affine => {
                     for (k, o) in out.iter_mut().enumerate() {
                         *o = pipe.project_vertex(&Vertex::new(pos(k), DepthQ));
+                        outside |= o.outcode;
                     }
                 }
                 _ => {
@@ -324,8 +330,12 @@ impl<S: Scalar> Renderer<S> {
                             outcode: v.outcode,
                             screen: ScreenVertex::new(v.screen.x, v.screen.y, v.screen.z, [0]),
                         };
+                        outside |= v.outcode;
                     }
                 }
+            }
+            if clipping.is_none() && outside != 0 && needs_clipper(out, mesh.triangles()) {
+                clipping = Some(index);
             }
             obj.frame = Some(ObjectFrame {
                 to_view,
@@ -338,8 +348,32 @@ impl<S: Scalar> Renderer<S> {
             renderer: self,
             objects,
             vertices: scratch,
+            clipping,
         })
     }
+}
+
+/// Whether [`Frame::draw`] sends a triangle of `tris` to the clipper: one
+/// with a vertex outside some plane of the view volume (or unusable) and
+/// no plane with all three outside (those it drops at once). The caller
+/// ORs the outcodes while it projects and asks only when some vertex is
+/// outside, so a mesh wholly inside (the common case) costs no scan of
+/// its triangles. An index out of range is not a clipping matter (both
+/// draws count it as an error).
+#[cold]
+#[inline(never)]
+fn needs_clipper(verts: &[MeshVertex<1>], tris: &[[u16; 3]]) -> bool {
+    tris.iter().any(|tri| {
+        let (mut or, mut and) = (0, u8::MAX);
+        for &k in tri {
+            let Some(v) = verts.get(k as usize) else {
+                return false;
+            };
+            or |= v.outcode;
+            and &= v.outcode;
+        }
+        or != 0 && and & !OUTCODE_UNUSABLE == 0
+    })
 }
 
 /// The perspective varying `q = near/z` alone: what a perspective texture
@@ -376,10 +410,13 @@ pub struct Frame<'f, 'a, S> {
     renderer: &'f Renderer<S>,
     objects: &'f [PreparedObject<'a, S>],
     vertices: &'f [MeshVertex<1>],
+    /// The first object with a triangle for the clipper ([`needs_clipper`]).
+    clipping: Option<usize>,
 }
 
-/// One triangle's path through [`Frame::draw`].
-struct Tri<'m, 'v, S> {
+/// One triangle's path through [`Frame::draw`] (with `CLIP`) or
+/// [`Frame::draw_unclipped`].
+struct Tri<'m, 'v, S, const CLIP: bool> {
     mesh: &'m PreparedMesh<'m, S>,
     frame: &'m ObjectFrame<S>,
     verts: &'v [MeshVertex<1>],
@@ -387,11 +424,16 @@ struct Tri<'m, 'v, S> {
     rows: (i32, i32),
 }
 
-impl<S: Scalar> Tri<'_, '_, S> {
+impl<S: Scalar, const CLIP: bool> Tri<'_, '_, S, CLIP> {
     /// Draws triangle `tri`: `inside(k, vertex)` gives the varyings of an
     /// unclipped vertex, `attr(k)` the view-space attributes of a vertex
     /// to clip, `shader(t)` the shader once the triangle is known to be
     /// visible.
+    ///
+    /// Without `CLIP` (for [`Frame::draw_unclipped`], which has checked
+    /// that no triangle needs it) the clipper is left out: a triangle that
+    /// needed it would be counted as an error, and the inside ones take
+    /// [`fill_small_triangle`], which leaves out the polygon walk.
     #[allow(clippy::too_many_arguments)]
     #[inline]
     fn draw<T, Z, A, Sh, const VARYINGS: usize>(
@@ -440,8 +482,15 @@ impl<S: Scalar> Tri<'_, '_, S> {
                 ScreenVertex::new(v.screen.x, v.screen.y, v.screen.z, inside(k, v))
             };
             let s = [sv(tri[0], a), sv(tri[1], b), sv(tri[2], c)];
-            fill_polygon(target, depth, &shader(&s), &s)
+            if CLIP {
+                fill_polygon(target, depth, &shader(&s), &s)
+            } else {
+                fill_small_triangle(target, depth, &shader(&s), &s)
+            }
         } else if a.outcode & b.outcode & c.outcode & !OUTCODE_UNUSABLE != 0 {
+            return;
+        } else if !CLIP {
+            stats.errors += 1;
             return;
         } else {
             stats.clipped += 1;
@@ -481,6 +530,65 @@ impl<S: Scalar> Frame<'_, '_, S> {
         T: Target<Color = Color>,
         Z: DepthTest,
     {
+        self.draw_with::<T, Z, true>(target, depth)
+    }
+
+    /// Whether a triangle of this frame crosses a plane of the view
+    /// volume (or uses a vertex that cannot be projected), so that
+    /// [`Self::draw`] clips it and [`Self::draw_unclipped`] refuses the
+    /// frame. Triangles wholly outside one plane need no clipper (they
+    /// are dropped). Decided once per frame, in
+    /// [`Renderer::project`], at the cost of one OR per vertex; the
+    /// triangles of an object are scanned only when one of its vertices
+    /// lies outside.
+    #[must_use]
+    pub fn needs_clipping(&self) -> bool {
+        self.clipping.is_some()
+    }
+
+    /// [`Self::draw`] without the clipper: the same pixels and the same
+    /// stats, for a frame that does not [need clipping](Self::needs_clipping)
+    /// on a viewport whose guard band lies within ±1024 pixels (up to
+    /// 1007 pixels a side with the 16-pixel band). Every triangle then
+    /// takes the scan converter's 32-bit triangle walk. A firmware whose
+    /// scene stays in view calls only this and links neither the clipper
+    /// nor the polygon walk: the flat cube and Gouraud bunny firmwares of
+    /// `tests/mcu` do (the size table in the [crate docs](crate) has
+    /// their figures).
+    ///
+    /// # Errors
+    /// [`SceneError::NeedsClipping`] (naming the first object with such
+    /// a triangle) or [`SceneError::ViewportTooLarge`]. Nothing is drawn
+    /// then, not even the background.
+    ///
+    /// # Panics
+    /// Never; nothing is written outside the target.
+    pub fn draw_unclipped<T, Z>(
+        &self,
+        target: &mut T,
+        depth: &mut Z,
+    ) -> Result<RasterStats, SceneError>
+    where
+        T: Target<Color = Color>,
+        Z: DepthTest,
+    {
+        if let Some(object) = self.clipping {
+            return Err(SceneError::NeedsClipping { object });
+        }
+        if !self.renderer.pipeline.guard_small() {
+            return Err(SceneError::ViewportTooLarge);
+        }
+        Ok(self.draw_with::<T, Z, false>(target, depth))
+    }
+
+    /// [`Self::draw`]'s body; without `CLIP` the clipper is left out
+    /// (see `Tri::draw`).
+    #[inline(always)]
+    fn draw_with<T, Z, const CLIP: bool>(&self, target: &mut T, depth: &mut Z) -> RasterStats
+    where
+        T: Target<Color = Color>,
+        Z: DepthTest,
+    {
         let mut clip: Rect = target.clip_rect();
         if let Some(r) = depth.clip_rect() {
             clip = clip.intersect(&r);
@@ -503,7 +611,7 @@ impl<S: Scalar> Frame<'_, '_, S> {
                 continue;
             };
             let pipe = self.renderer.pipeline.with_cull(obj.cull);
-            let t = Tri {
+            let t = Tri::<'_, '_, S, CLIP> {
                 mesh,
                 frame: fr,
                 verts,

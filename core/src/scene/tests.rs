@@ -458,3 +458,56 @@ fn auto_mapping_follows_the_affine_error_bound() {
         "too few cases where affine and perspective differ: {evidence:?}"
     );
 }
+
+/// The bunny alone (the built-in scene without its floor) stays in view:
+/// with a depth buffer, in both scalars, whole and in bands,
+/// `draw_unclipped` draws what `draw` does.
+#[test]
+fn bunny_draws_the_same_unclipped() {
+    fn check<S: Scalar>() {
+        let scene = Scene {
+            objects: &builtin::BUNNY.objects[1..],
+            ..builtin::BUNNY
+        };
+        let (w, h) = (320u16, 240u16);
+        let draw = |unclipped: bool, rows: u16| {
+            let mut px = vec![Color::new(1, 2, 3); w as usize * h as usize];
+            let mut keys = vec![0u16; w as usize * rows as usize];
+            let stats = super::feature_tests::with_frame::<S, _>(&scene, w, h, |f| {
+                assert!(!f.needs_clipping());
+                let mut sum = RasterStats::default();
+                for (k, band) in px.chunks_mut(w as usize * rows as usize).enumerate() {
+                    let y0 = k as i32 * rows as i32;
+                    let n = (band.len() / w as usize) as u16;
+                    let mut t = crate::target::Band::new(band, w, n, w as usize, y0).unwrap();
+                    let mut z = DepthBuffer::new(&mut keys, w, n, w as usize, y0).unwrap();
+                    z.clear();
+                    let s = if unclipped {
+                        f.draw_unclipped(&mut t, &mut z).unwrap()
+                    } else {
+                        f.draw(&mut t, &mut z)
+                    };
+                    sum.drawn += s.drawn;
+                    sum.culled += s.culled;
+                    sum.clipped += s.clipped;
+                    sum.errors += s.errors;
+                }
+                sum
+            })
+            .unwrap();
+            (stats, px)
+        };
+        for rows in [240, 15] {
+            let (want, want_px) = draw(false, rows);
+            let (got, got_px) = draw(true, rows);
+            assert!(
+                want.drawn > 1000 && want.clipped == 0 && want.errors == 0,
+                "{want:?}"
+            );
+            assert_eq!(got, want);
+            assert!(got_px == want_px, "{rows}-row bands: pixels differ");
+        }
+    }
+    check::<I16F16>();
+    check::<f32>();
+}

@@ -130,6 +130,16 @@ impl<S: Scalar> Pipeline<S> {
         MeshVertex { outcode, screen }
     }
 
+    /// The outcode bits a vertex's projection cannot be used with: the
+    /// depth planes' (near, and far with `with_far_clip`) and
+    /// [`OUTCODE_UNUSABLE`]. A vertex with only side-plane bits set (off
+    /// the viewport's guard band, in front of the eye) still has its
+    /// exact projection in [`MeshVertex::screen`].
+    pub(crate) fn unprojected_outcodes(&self) -> u8 {
+        let depth_planes = self.frustum.planes().len().saturating_sub(4);
+        ((1u8 << depth_planes) - 1) | UNUSABLE
+    }
+
     /// Projects every vertex of `verts` into `out` (pairwise; extra
     /// entries of either slice are left alone).
     pub fn project_vertices<A: Varyings<S, VARYINGS>, const VARYINGS: usize>(

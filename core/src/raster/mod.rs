@@ -81,6 +81,7 @@ pub use texture::{AffineTexture, LitAffineTexture};
 pub const PERSPECTIVE_Q_BITS: u32 = 24;
 
 use crate::target::Target;
+pub(crate) use edge::SMALL_COORD_LIMIT;
 use edge::{EdgeStepper, EdgeStepper32, first_center};
 use gradient::{AreaRecip, Basis, Gradient};
 

@@ -399,9 +399,11 @@ fn draw_either(
     (r, needs, px)
 }
 
-/// The cube alone stays in view; `draw_unclipped` draws what `draw` does,
-/// also with a second cube behind the camera (every vertex outside the
-/// near plane: dropped without the clipper, so the frame needs none).
+/// The cube scene (its flat floor reaches a little past the view's sides:
+/// within the widened guard band, drawn as it is), the cube alone, and
+/// the cube with a second one behind the camera (every vertex outside the
+/// near plane: dropped without the clipper): no frame needs clipping, and
+/// `draw_unclipped` draws what `draw` does.
 #[test]
 fn draw_unclipped_draws_what_draw_does() {
     let cube = CUBE.objects[1];
@@ -413,9 +415,16 @@ fn draw_unclipped_draws_what_draw_does() {
     };
     let alone = [cube];
     let with_behind = [cube, behind];
-    for objects in [&alone[..], &with_behind[..]] {
+    // (The floor reaches beyond 1024 pixels at 1007×700: the next test.)
+    type Case<'s> = (&'s [SceneObject<'s>], &'s [(u16, u16)]);
+    let cases: [Case<'_>; 3] = [
+        (CUBE.objects, &[(64, 48), (320, 240)]),
+        (&alone, &[(64, 48), (320, 240), (1007, 700)]),
+        (&with_behind, &[(64, 48), (320, 240), (1007, 700)]),
+    ];
+    for (objects, sizes) in cases {
         let scene = Scene { objects, ..CUBE };
-        for (w, h) in [(64, 48), (320, 240), (1007, 700)] {
+        for &(w, h) in sizes {
             let (want, needs, want_px) = draw_either(&scene, w, h, false);
             let (got, needs_u, got_px) = draw_either(&scene, w, h, true);
             assert!(!needs && !needs_u, "{w}x{h}: the cube stays in view");
@@ -432,12 +441,13 @@ fn draw_unclipped_draws_what_draw_does() {
 /// background) is written. So is a viewport beyond the 32-bit walk.
 #[test]
 fn draw_unclipped_refuses_what_needs_the_clipper() {
-    // The cube scene's floor (object 0) reaches past the view's sides.
-    let (r, needs, px) = draw_either(&CUBE, 64, 48, true);
+    // At 1007×700 the cube scene's floor (object 0) reaches beyond 1024
+    // pixels, past the widened guard band.
+    let (r, needs, px) = draw_either(&CUBE, 1007, 700, true);
     assert!(needs);
     assert_eq!(r, Err(SceneError::NeedsClipping { object: 0 }));
     assert!(px.iter().all(|&c| c == SENTINEL));
-    let (drawn, _, _) = draw_either(&CUBE, 64, 48, false);
+    let (drawn, _, _) = draw_either(&CUBE, 1007, 700, false);
     assert!(drawn.unwrap().clipped > 0, "draw clips the floor");
 
     // A second cube around the eye crosses the near plane.
@@ -466,4 +476,17 @@ fn draw_unclipped_refuses_what_needs_the_clipper() {
     assert!(!needs);
     assert_eq!(r, Err(SceneError::ViewportTooLarge));
     assert!(px.iter().all(|&c| c == SENTINEL));
+}
+
+/// Textured objects keep the 16-pixel guard band (see
+/// `widen_guard_band`): the corridor's walls, past the sides, are clipped.
+#[cfg(feature = "texture")]
+#[test]
+fn textured_sides_are_clipped() {
+    let (r, needs, px) = draw_either(&CORRIDOR_AFFINE, 64, 48, true);
+    assert!(needs);
+    assert_eq!(r, Err(SceneError::NeedsClipping { object: 0 }));
+    assert!(px.iter().all(|&c| c == SENTINEL));
+    let (drawn, _, _) = draw_either(&CORRIDOR_AFFINE, 64, 48, false);
+    assert!(drawn.unwrap().clipped > 0);
 }

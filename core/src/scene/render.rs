@@ -277,6 +277,15 @@ impl<S: Scalar> Renderer<S> {
     /// entries as the objects have vertices; [`Scene::storage`] says how
     /// many). The returned frame draws them, once or band by band.
     ///
+    /// Each entry's outcode is taken against the object's guard band: a
+    /// vertex of a flat or Gouraud object that lies past the 16-pixel
+    /// band only through the side planes, within ±1024 pixels of the
+    /// viewport's origin, is recorded as inside, so that its triangles
+    /// are drawn from their exact projection (scissored) instead of
+    /// being cut by the clipper; textured objects keep the 16-pixel band.
+    /// The frame also notes whether any triangle needs the clipper
+    /// ([`Frame::needs_clipping`]).
+    ///
     /// # Errors
     /// [`SceneError::ScratchTooSmall`]; nothing is projected then.
     pub fn project<'f, 'a>(
@@ -582,11 +591,11 @@ impl<S: Scalar> Frame<'_, '_, S> {
     /// [`Self::draw`] clips it and [`Self::draw_unclipped`] refuses the
     /// frame. The side planes lie at the guard band: 16 pixels past the
     /// viewport for textured objects, ±1024 pixels from its origin for
-    /// flat and Gouraud ones (see the [module docs](self)). Triangles
-    /// wholly outside one plane need no clipper (they are dropped). Decided once per frame, in
-    /// [`Renderer::project`], at the cost of one OR per vertex; the
-    /// triangles of an object are scanned only when one of its vertices
-    /// lies outside.
+    /// flat and Gouraud ones (see [`Renderer::project`]). Triangles
+    /// wholly outside one plane need no clipper (they are dropped).
+    /// Decided once per frame, in [`Renderer::project`], at the cost of
+    /// one OR per vertex; the triangles of an object are scanned only
+    /// when one of its vertices lies outside.
     #[must_use]
     pub fn needs_clipping(&self) -> bool {
         self.clipping.is_some()

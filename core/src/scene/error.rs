@@ -106,8 +106,10 @@ pub enum SceneError {
     },
     /// [`Frame::draw_unclipped`](super::Frame::draw_unclipped) was given
     /// a frame in which a triangle of this object crosses a plane of the
-    /// view volume (or uses a vertex that cannot be projected): it needs
-    /// the clipper of [`Frame::draw`](super::Frame::draw).
+    /// view volume (the side planes at the object's guard band, see
+    /// [`Renderer::project`](super::Renderer::project)) or uses a vertex
+    /// that cannot be projected: it needs the clipper of
+    /// [`Frame::draw`](super::Frame::draw).
     NeedsClipping {
         /// Object index in the scene (the first such object).
         object: usize,

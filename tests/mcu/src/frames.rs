@@ -467,7 +467,8 @@ impl<'a, S: Scalar> Workload<'a, S> {
         // the near plane is never crossed, and it stays on screen), so the
         // frame is drawn without the clipper, as a firmware whose scene
         // stays in view draws it (`Frame::draw_unclipped`: the same pixels
-        // as `Frame::draw`, which the host's frame checks compare).
+        // as `Frame::draw`, which core's `bunny_draws_the_same_unclipped`
+        // checks).
         match self.renderer.project(&mut self.object, scratch) {
             Ok(frame) => frame.draw_unclipped(&mut fb, &mut z).map_or(0, |s| s.drawn),
             Err(_) => 0,

@@ -647,12 +647,7 @@ impl<S: Scalar> Frame<'_, '_, S> {
         if let Some(r) = depth.clip_rect() {
             clip = clip.intersect(&r);
         }
-        let bg = target.clip_rect();
-        if !bg.is_empty() {
-            for y in bg.y0..bg.y1 {
-                target.fill_solid(y, bg.x0, (bg.x1 - bg.x0) as u32, self.renderer.background);
-            }
-        }
+        target.clear(self.renderer.background);
         let mut stats = RasterStats::default();
         if clip.is_empty() {
             return stats;

@@ -102,4 +102,18 @@ impl<D: DrawTarget> Target for DrawTargetSink<'_, D> {
             }
         }
     }
+
+    /// One `fill_solid` of the whole bounding box (a display driver's
+    /// one window write) instead of one per row.
+    fn clear(&mut self, color: D::Color) {
+        let r = self.clip;
+        if self.error.is_some() || r.is_empty() {
+            return;
+        }
+        let size = Size::new((r.x1 - r.x0) as u32, (r.y1 - r.y0) as u32);
+        let area = Rectangle::new(Point::new(r.x0, r.y0), size);
+        if let Err(e) = self.target.fill_solid(&area, color) {
+            self.error = Some(e);
+        }
+    }
 }

@@ -103,6 +103,10 @@ impl<C: Copy> Target for Framebuffer<'_, C> {
     fn span_mut(&mut self, y: i32, x: i32, len: u32) -> Option<&mut [C]> {
         self.0.span_mut(y, x, len)
     }
+
+    fn clear(&mut self, color: C) {
+        self.0.clear(color);
+    }
 }
 
 /// Rows `y0..y0+rows` of a taller frame, in a buffer that holds only those
@@ -206,10 +210,20 @@ impl<'a, C: Copy> Band<'a, C> {
             .and_then(|i| self.buf.get(i).copied())
     }
 
-    /// Sets every pixel of the band to `color`.
+    /// Sets every pixel of the band to `color` (one pass over the slice
+    /// when `stride == width`).
     pub fn clear(&mut self, color: C) {
-        let y0 = self.layout.y0;
-        for y in y0..y0 + self.layout.height as i32 {
+        let l = self.layout;
+        if l.stride == l.width as usize {
+            // Rows without gaps: one fill (`Layout::new` checked that the
+            // slice holds them).
+            if let Some(all) = self.buf.get_mut(..l.width as usize * l.height as usize) {
+                fill_unrolled(all, color);
+            }
+            return;
+        }
+        let y0 = l.y0;
+        for y in y0..y0 + l.height as i32 {
             self.fill_solid(y, 0, self.layout.width as u32, color);
         }
     }
@@ -270,6 +284,10 @@ impl<C: Copy> Target for Band<'_, C> {
     #[inline(always)]
     fn span_mut(&mut self, y: i32, x: i32, len: u32) -> Option<&mut [C]> {
         self.exact_span_mut(y, x, len)
+    }
+
+    fn clear(&mut self, color: C) {
+        Band::clear(self, color);
     }
 }
 

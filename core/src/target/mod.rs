@@ -102,6 +102,21 @@ pub trait Target {
     fn span_mut(&mut self, _y: i32, _x: i32, _len: u32) -> Option<&mut [Self::Color]> {
         None
     }
+
+    /// Sets every pixel of [`Target::clip_rect`] to `color`: what
+    /// [`Frame::draw`](crate::scene::Frame::draw) does first with the
+    /// scene's background. The default fills it row by row with
+    /// [`Target::fill_solid`]; a target whose rows lie end to end in one
+    /// slice ([`Framebuffer`] with `stride == width`) fills it in one pass.
+    fn clear(&mut self, color: Self::Color) {
+        let r = self.clip_rect();
+        if r.is_empty() {
+            return;
+        }
+        for y in r.y0..r.y1 {
+            self.fill_solid(y, r.x0, (r.x1 - r.x0) as u32, color);
+        }
+    }
 }
 
 impl<T: Target + ?Sized> Target for &mut T {
@@ -118,6 +133,9 @@ impl<T: Target + ?Sized> Target for &mut T {
     #[inline]
     fn span_mut(&mut self, y: i32, x: i32, len: u32) -> Option<&mut [Self::Color]> {
         (**self).span_mut(y, x, len)
+    }
+    fn clear(&mut self, color: Self::Color) {
+        (**self).clear(color);
     }
 }
 

@@ -130,6 +130,11 @@ where
         self.inner
             .fill_with(y, x, len, || T::Color::encode(colors(), order));
     }
+
+    fn clear(&mut self, color: Rgb565) {
+        let order = self.order;
+        self.inner.clear(T::Color::encode(color, order));
+    }
 }
 
 #[cfg(test)]
@@ -176,6 +181,19 @@ mod tests {
         }
         assert_eq!(bytes[1], [hi, lo]);
         assert_eq!(bytes[0], [lo, hi]);
+    }
+
+    #[test]
+    fn clear_encodes_once_for_the_whole_target() {
+        let c = Rgb565::new(0b10110, 0b011001, 0b00111);
+        let raw: u16 = 0b10110 << 11 | 0b011001 << 5 | 0b00111;
+        let mut words = [0u16; 7];
+        {
+            let fb = Framebuffer::new(&mut words, 3, 2, 3).unwrap();
+            Rgb565Encoder::new(fb, ByteOrder::BigEndian).clear(c);
+        }
+        let be = u16::from_ne_bytes(raw.to_be_bytes());
+        assert_eq!(words, [be, be, be, be, be, be, 0]);
     }
 
     #[test]

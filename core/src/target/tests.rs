@@ -7,7 +7,7 @@ use crate::test_util::sp;
 use crate::test_util::sv;
 use embedded_graphics::Pixel;
 use embedded_graphics::draw_target::DrawTarget;
-use embedded_graphics::geometry::{OriginDimensions, Size};
+use embedded_graphics::geometry::{OriginDimensions, Point, Size};
 use embedded_graphics::mock_display::MockDisplay;
 use embedded_graphics::pixelcolor::{BinaryColor, Gray8};
 #[cfg(feature = "gouraud")]
@@ -170,6 +170,59 @@ fn draw_target_sink_uses_span_fills_and_clips() {
         "  ########  ", //
         "  #######   ", //
     ]);
+}
+
+/// `Target::clear` sets exactly the clip rectangle, whichever route the
+/// target takes: the default (row by row), a gapless framebuffer's one
+/// pass (the slice beyond `width·height` is not the frame's), a padded
+/// one (row by row, padding kept), a band, the byte-order encoder and the
+/// `DrawTarget` sink's one rectangle fill.
+#[test]
+fn target_clear_fills_the_clip_rect_only() {
+    fn via_trait<T: Target>(t: &mut T, c: T::Color) {
+        t.clear(c);
+    }
+    let mut buf = [0u8; 14];
+    via_trait(&mut Framebuffer::new(&mut buf, 3, 4, 3).unwrap(), 5);
+    assert_eq!(buf, [5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 0, 0]);
+    let mut buf = [0u8; 11];
+    via_trait(&mut Framebuffer::new(&mut buf, 3, 3, 4).unwrap(), 6);
+    assert_eq!(buf, [6, 6, 6, 0, 6, 6, 6, 0, 6, 6, 6]);
+    let mut buf = [0u8; 6];
+    via_trait(&mut Band::new(&mut buf, 2, 2, 3, 40).unwrap(), 7);
+    assert_eq!(buf, [7, 7, 0, 7, 7, 0]);
+    // The default route, through a target that has no override of its own.
+    // (MockTarget panics on a write outside it or a second write.)
+    let mut m = crate::test_util::MockTarget::new(4, 3);
+    via_trait(&mut m, '#');
+    m.assert_pattern(&["####"; 3]);
+    // One fill_solid of the whole 12×8 box, not one per row.
+    struct Rects(MockDisplay<BinaryColor>, std::vec::Vec<Rectangle>);
+    impl OriginDimensions for Rects {
+        fn size(&self) -> Size {
+            Size::new(12, 8)
+        }
+    }
+    impl DrawTarget for Rects {
+        type Color = BinaryColor;
+        type Error = core::convert::Infallible;
+        fn draw_iter<I: IntoIterator<Item = Pixel<BinaryColor>>>(
+            &mut self,
+            it: I,
+        ) -> Result<(), Self::Error> {
+            self.0.draw_iter(it)
+        }
+        fn fill_solid(&mut self, area: &Rectangle, c: BinaryColor) -> Result<(), Self::Error> {
+            self.1.push(*area);
+            self.0.fill_solid(area, c)
+        }
+    }
+    let mut d = Rects(MockDisplay::new(), vec![]);
+    let mut sink = DrawTargetSink::new(&mut d);
+    via_trait(&mut sink, BinaryColor::On);
+    sink.finish().unwrap();
+    assert_eq!(d.1, [Rectangle::new(Point::zero(), Size::new(12, 8))]);
+    d.0.assert_pattern(&["############"; 8]);
 }
 
 #[cfg(feature = "gouraud")]

@@ -5,9 +5,10 @@
 //! projected exactly once, with its clip outcode, into the caller's
 //! scratch ([`MeshVertex`]). Per triangle, [`Frame::draw`] then
 //!
-//! 1. rejects it if it lies wholly outside one plane, or (when all three
-//!    vertices are inside the volume) outside the band's rows;
-//! 2. culls it in screen space by its winding (i32 cross product);
+//! 1. rejects it if it lies wholly outside one plane;
+//! 2. culls it in screen space by its winding (i32 cross product), then
+//!    (when all three vertices are inside the volume) rejects it if it
+//!    lies outside the band's rows;
 //! 3. lights it (flat shading: one dot product with the prepared face
 //!    normal), and scan-converts it.
 //!
@@ -58,7 +59,8 @@ pub struct RasterStats {
     pub triangles: u32,
     /// Triangles that emitted spans.
     pub drawn: u32,
-    /// Triangles dropped by face culling.
+    /// Triangles dropped by face culling (counted in every band's call:
+    /// the winding is tested before the band's rows).
     pub culled: u32,
     /// Triangles that went through the clipper.
     pub clipped: u32,
@@ -516,19 +518,21 @@ impl<S: Scalar, const CLIP: bool> Tri<'_, '_, S, CLIP> {
             return;
         };
         let outcome = if a.outcode | b.outcode | c.outcode == 0 {
+            // Culled before the varyings are gathered; the vertices are
+            // built in place (an array `map` here compiled to two memcpy
+            // calls per triangle on ARMv6-M). The winding test comes
+            // first: it is the cheaper one, and for a whole-frame target
+            // the only one that rejects anything.
+            let xy = |v: &MeshVertex<1>| (v.screen.x, v.screen.y);
+            if !self.pipe.keep_inside(xy(a), xy(b), xy(c)) {
+                stats.culled += 1;
+                return;
+            }
             let (ya, yb, yc) = (a.screen.y, b.screen.y, c.screen.y);
             // Rows with centers in [y_min, y_max): see raster's fill rule.
             let top = (ya.min(yb).min(yc) + 7) >> 4;
             let bottom = (ya.max(yb).max(yc) + 7) >> 4;
             if bottom <= self.rows.0 || top >= self.rows.1 {
-                return;
-            }
-            // Culled before the varyings are gathered; the vertices are
-            // built in place (an array `map` here compiled to two memcpy
-            // calls per triangle on ARMv6-M).
-            let xy = |v: &MeshVertex<1>| (v.screen.x, v.screen.y);
-            if !self.pipe.keep_inside(xy(a), xy(b), xy(c)) {
-                stats.culled += 1;
                 return;
             }
             let sv = |k: u16, v: &MeshVertex<1>| {

@@ -211,8 +211,9 @@ pub trait Scalar:
 
     /// `m` prepared for many products by [`Self::mat3_vec3_prepared`], in
     /// the type's own 27 words, where it has a faster route for them;
-    /// `None` otherwise. 16.16 fixed point on ARMv6-M has one: the range
-    /// test of the matrix and the 16-bit halves of its entries, once.
+    /// `None` otherwise. 16.16 fixed point on ARMv6-M has one for entries
+    /// within ±64: the range test of the matrix and the 16-bit halves of
+    /// its entries, once.
     #[must_use]
     #[inline]
     fn mat3_prepare(m: &[[Self; 3]; 3]) -> Option<[[[i32; 3]; 3]; 3]> {

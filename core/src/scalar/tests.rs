@@ -797,7 +797,9 @@ fn shr_to_u32_is_the_64_bit_shift() {
 /// answers, and answers exactly when every operand is inside the limit;
 /// the prepared routes (`mat3_split16` then `mat3_split16_vec`, and
 /// `vec3_split16` then `vec3_split16_dot`, with the row as the prepared
-/// operand: `dot16_small3(v, row)`) give the same answers.
+/// operand: `dot16_small3(v, row)`) prepare exactly the operands within
+/// half the limit and then give the same answers (their sums, unlike
+/// `dot16_small3`'s, do not saturate: they cannot reach it).
 #[test]
 fn mat3_vec16_small_equals_three_dots() {
     use super::fixed_point::{
@@ -818,24 +820,36 @@ fn mat3_vec16_small_equals_three_dots() {
             }
             None => assert!(!all_in, "{m:?}·{v:?} refused inside the limit"),
         }
-        let prepared = mat3_split16(&m).and_then(|s| mat3_split16_vec(&s, v));
-        assert_eq!(prepared, got, "prepared {m:?}·{v:?}");
+        let half = |x: &i32| (-lim / 2..lim / 2).contains(x);
+        let split = mat3_split16(&m);
+        assert_eq!(split.is_some(), m.iter().flatten().all(half), "{m:?}");
+        if let Some(s) = split {
+            assert_eq!(mat3_split16_vec(&s, v), got, "prepared {m:?}·{v:?}");
+        }
         for row in m {
-            let dot = vec3_split16(row).and_then(|s| vec3_split16_dot(&s, v));
-            assert_eq!(dot, dot16_small3(v, row), "prepared {v:?}·{row:?}");
+            let split = vec3_split16(row);
+            assert_eq!(split.is_some(), row.iter().all(half), "{row:?}");
+            if let Some(s) = split {
+                let dot = vec3_split16_dot(&s, v);
+                assert_eq!(dot, dot16_small3(v, row), "prepared {v:?}·{row:?}");
+            }
         }
     };
     let big = lim - 1;
     check([[big; 3]; 3], [big; 3]);
+    // The largest prepared sums: each product 2^29 in magnitude.
+    let p = lim / 2 - 1;
+    check([[p; 3], [-lim / 2; 3], [p, -lim / 2, p]], [big; 3]);
+    check([[p; 3], [-lim / 2; 3], [p, -lim / 2, p]], [-lim; 3]);
     check([[-lim, -lim, 0], [0; 3], [big, -lim, 1]], [-lim, -lim, 0]);
     check([[0; 3], [0, lim, 0], [0; 3]], [1, 1, 1]);
     check([[0; 3]; 3], [0, 0, -lim - 1]);
     let mut rng = crate::test_util::Rng::new(4711);
     for _ in 0..1 << 15 {
-        let m = if rng.range(0.0, 1.0) < 0.5 {
-            lim as f64 * 1.0003
-        } else {
-            65536.0 * 4.0
+        let m = match rng.int(0, 2) {
+            0 => lim as f64 * 1.0003,
+            1 => lim as f64 * 0.5002,
+            _ => 65536.0 * 4.0,
         };
         let mut r = || rng.range(-m, m) as i32;
         let mm = [[r(), r(), r()], [r(), r(), r()], [r(), r(), r()]];

@@ -262,13 +262,14 @@ fn gray8_framebuffer() {
 
 #[test]
 fn fill_solid_writes_exactly_the_clipped_span_for_every_length() {
-    // The unrolled fill (eight stores per step, then the remainder) must
-    // write exactly [x, x + len) ∩ [0, w) of the row, for spans shorter
-    // than, equal to and longer than a multiple of eight, and leave the
-    // stride padding and the other rows alone.
-    let (w, h, stride) = (37u16, 3u16, 40usize);
-    for x in -9..40 {
-        for len in 0..50u32 {
+    // The unrolled fill (32 stores per step, then 16, then the remainder)
+    // must write exactly [x, x + len) ∩ [0, w) of the row, for spans
+    // shorter than, equal to and longer than multiples of 16 and 32 (up
+    // to two whole 32-pixel steps and more), and leave the stride padding
+    // and the other rows alone.
+    let (w, h, stride) = (83u16, 3u16, 86usize);
+    for x in -9..86 {
+        for len in 0..100u32 {
             let mut buf = vec![0u16; stride * h as usize];
             let mut fb = Framebuffer::new(&mut buf, w, h, stride).unwrap();
             fb.fill_solid(1, x, len, 7);

@@ -305,6 +305,9 @@ impl<C: Copy> Target for Band<'_, C> {
 /// 96 bytes.
 #[inline(never)]
 fn fill_unrolled<C: Copy>(row: &mut [C], color: C) {
+    if super::pairs::fill_pairs(row, color) {
+        return;
+    }
     #[inline(always)]
     fn sixteen<C: Copy>(c: &mut [C], color: C) {
         if let [a, b, d, e, f, g, h, i, j, k, l, m, n, o, p, q] = c {

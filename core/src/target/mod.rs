@@ -19,6 +19,7 @@
 mod draw_target;
 mod framebuffer;
 pub(crate) mod layout;
+mod pairs;
 mod rgb565;
 
 pub use draw_target::DrawTargetSink;

@@ -286,3 +286,49 @@ fn fill_solid_writes_exactly_the_clipped_span_for_every_length() {
         }
     }
 }
+
+/// The two-pixel word fill writes exactly the row, at every start
+/// alignment and length around its 16- and 32-word steps, for 2-byte
+/// pixel types of alignment 2 and 1 and one with a padding byte; the
+/// neighbours on both sides keep their values. (CI also runs it under
+/// Miri: `cargo +nightly-2026-05-20 miri test -p sightline --lib
+/// pair_fill`.)
+#[test]
+fn pair_fill_writes_exactly_the_row() {
+    fn check<C: Copy + PartialEq + core::fmt::Debug>(old: C, new: C) {
+        let lens = if cfg!(miri) { 0..70 } else { 0..140 };
+        for start in 0..4 {
+            for len in lens.clone() {
+                let mut buf = vec![old; start + len + 3];
+                fill_row(&mut buf[start..start + len], new);
+                for (i, &p) in buf.iter().enumerate() {
+                    let inside = (start..start + len).contains(&i);
+                    assert_eq!(
+                        p,
+                        if inside { new } else { old },
+                        "start {start} len {len} at {i}"
+                    );
+                }
+            }
+        }
+    }
+    /// One byte of value and one of padding.
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    #[repr(C, align(2))]
+    struct Padded(u8);
+    fn fill_row<C: Copy>(row: &mut [C], color: C) {
+        let w = row.len() as u16;
+        let mut fb = Framebuffer::new(row, w, 1, w as usize).unwrap();
+        Target::clear(&mut fb, color);
+    }
+    check::<u16>(0x1234, 0xabcd);
+    check::<[u8; 2]>([1, 2], [3, 4]);
+    check::<Padded>(Padded(5), Padded(6));
+    {
+        use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+        check::<Rgb565>(Rgb565::BLACK, Rgb565::new(3, 50, 9));
+    }
+    // Other sizes take the plain fill.
+    check::<u8>(1, 2);
+    check::<u32>(1, 2);
+}

@@ -302,7 +302,8 @@ impl<C: Copy> Target for Band<'_, C> {
 /// 1.64 to 1.46. (x86-64 W1, callgrind: 3 278 675 -> 3 282 018.) Then 32
 /// stores per iteration before the 16 (a whole-frame clear is 76 800
 /// pixels): W1/W2 on ARMv6-M 5.094 M / 6.054 M -> 5.087 M / 6.046 M, for
-/// 96 bytes.
+/// 96 bytes. Pixels of two bytes take `pairs::fill_pairs` instead (two
+/// pixels a store); the loop below serves the other sizes.
 #[inline(never)]
 fn fill_unrolled<C: Copy>(row: &mut [C], color: C) {
     if super::pairs::fill_pairs(row, color) {

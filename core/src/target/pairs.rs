@@ -6,7 +6,11 @@
 //! shader is at most one (issue 12's `ipp flat`). Viewing the row's
 //! 4-byte-aligned middle as words halves the stores. Safe Rust has no
 //! such view of a slice of a foreign pixel type (embedded-graphics'
-//! `Rgb565` implements no byte-cast trait), hence this module.
+//! `Rgb565` implements no byte-cast trait), hence this module. On
+//! ARMv6-M it took `ipp flat` from 1.36 to 0.77 instructions a pixel and
+//! W1/W2 (whose colour clear is such a fill) from 5.08 M / 6.04 M to
+//! 5.04 M / 6.00 M instructions a frame, for 100 bytes (`bash
+//! tests/mcu/run`).
 //!
 //! Soundness, for any `C: Copy` with `size_of::<C>() == 2`:
 //! - the word is the bytes of `[color, color]`, read as a

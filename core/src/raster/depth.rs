@@ -173,7 +173,8 @@ fn fill_far_words<K: StoredDepth>(keys: &mut [K]) {
     tail.fill(K::FAR);
 }
 
-/// `words.fill(w)`, 32 word stores per loop iteration. The key fill
+/// `words.fill(w)` by the solid fills' unrolled store loop (32 stores per
+/// iteration). The key fill
 /// before, `slice::fill` of 16-bit keys, became the library's `memset`,
 /// which on ARMv6-M stores one word per four instructions: with this loop
 /// (and one fill for a gapless buffer instead of one per row) W1/W2 per
@@ -190,44 +191,13 @@ fn fill_words(words: &mut [u32], w: u32) {
     // Opaque to the optimizer: with the constant far value in view, LLVM
     // turned the stores back into a `memset` call.
     let w = core::hint::black_box(w);
-    #[inline(always)]
-    fn sixteen(c: &mut [u32], w: u32) {
-        if let [
-            p0,
-            p1,
-            p2,
-            p3,
-            p4,
-            p5,
-            p6,
-            p7,
-            p8,
-            p9,
-            p10,
-            p11,
-            p12,
-            p13,
-            p14,
-            p15,
-        ] = c
-        {
-            (*p0, *p1, *p2, *p3, *p4, *p5, *p6, *p7) = (w, w, w, w, w, w, w, w);
-            (*p8, *p9, *p10, *p11, *p12, *p13, *p14, *p15) = (w, w, w, w, w, w, w, w);
-        }
-    }
-    let mut chunks = words.chunks_exact_mut(32);
-    for c in &mut chunks {
-        let (lo, hi) = c.split_at_mut(16);
-        sixteen(lo, w);
-        sixteen(hi, w);
-    }
-    chunks.into_remainder().fill(w);
+    crate::target::fill_run(words, w);
 }
 
 mod private {
     /// `Pod` lets [`super::DepthBuffer::clear`] store two 16-bit keys at
-    /// once through a `u32` view of the keys (`bytemuck`'s checked cast,
-    /// so the crate stays free of `unsafe`).
+    /// once through a `u32` view of the keys (`bytemuck`'s checked cast:
+    /// no `unsafe` of sightline's own).
     pub trait Sealed: bytemuck::Pod {}
     impl Sealed for u16 {}
     impl Sealed for u32 {}

@@ -309,25 +309,34 @@ fn fill_unrolled<C: Copy>(row: &mut [C], color: C) {
     if super::pairs::fill_pairs(row, color) {
         return;
     }
+    fill_run(row, color);
+}
+
+/// `s.fill(v)` in unrolled stores: 32 per iteration, then 16, then one
+/// by one. The one store loop of the solid fills: pixels
+/// ([`fill_unrolled`]), pixel pairs (`pairs::fill_pairs`) and depth-key
+/// words (`DepthBuffer::clear`); each caller keeps it out of line.
+#[inline(always)]
+pub(crate) fn fill_run<T: Copy>(s: &mut [T], v: T) {
     #[inline(always)]
-    fn sixteen<C: Copy>(c: &mut [C], color: C) {
+    fn sixteen<T: Copy>(c: &mut [T], v: T) {
         if let [a, b, d, e, f, g, h, i, j, k, l, m, n, o, p, q] = c {
-            (*a, *b, *d, *e) = (color, color, color, color);
-            (*f, *g, *h, *i) = (color, color, color, color);
-            (*j, *k, *l, *m) = (color, color, color, color);
-            (*n, *o, *p, *q) = (color, color, color, color);
+            (*a, *b, *d, *e) = (v, v, v, v);
+            (*f, *g, *h, *i) = (v, v, v, v);
+            (*j, *k, *l, *m) = (v, v, v, v);
+            (*n, *o, *p, *q) = (v, v, v, v);
         }
     }
-    let mut chunks = row.chunks_exact_mut(32);
+    let mut chunks = s.chunks_exact_mut(32);
     for c in &mut chunks {
         let (lo, hi) = c.split_at_mut(16);
-        sixteen(lo, color);
-        sixteen(hi, color);
+        sixteen(lo, v);
+        sixteen(hi, v);
     }
     let rest = chunks.into_remainder();
     let mut chunks = rest.chunks_exact_mut(16);
     for c in &mut chunks {
-        sixteen(c, color);
+        sixteen(c, v);
     }
-    chunks.into_remainder().fill(color);
+    chunks.into_remainder().fill(v);
 }

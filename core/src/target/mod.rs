@@ -18,6 +18,8 @@
 
 mod draw_target;
 mod framebuffer;
+#[cfg(feature = "depth")]
+pub(crate) use framebuffer::fill_run;
 pub(crate) mod layout;
 mod pairs;
 mod rgb565;

@@ -42,49 +42,7 @@ pub(super) fn fill_pairs<C: Copy>(row: &mut [C], color: C) -> bool {
     // middle, so each pixel of it ends up with `color`'s bytes.
     let (head, words, tail) = unsafe { row.align_to_mut::<MaybeUninit<u32>>() };
     head.fill(color);
-    fill_words(words, word);
+    super::framebuffer::fill_run(words, word);
     tail.fill(color);
     true
-}
-
-/// `words.fill(w)`, 32 stores per iteration, then 16, then one by one.
-#[inline(always)]
-fn fill_words(words: &mut [MaybeUninit<u32>], w: MaybeUninit<u32>) {
-    #[inline(always)]
-    fn sixteen(c: &mut [MaybeUninit<u32>], w: MaybeUninit<u32>) {
-        if let [
-            p0,
-            p1,
-            p2,
-            p3,
-            p4,
-            p5,
-            p6,
-            p7,
-            p8,
-            p9,
-            p10,
-            p11,
-            p12,
-            p13,
-            p14,
-            p15,
-        ] = c
-        {
-            (*p0, *p1, *p2, *p3, *p4, *p5, *p6, *p7) = (w, w, w, w, w, w, w, w);
-            (*p8, *p9, *p10, *p11, *p12, *p13, *p14, *p15) = (w, w, w, w, w, w, w, w);
-        }
-    }
-    let mut chunks = words.chunks_exact_mut(32);
-    for c in &mut chunks {
-        let (lo, hi) = c.split_at_mut(16);
-        sixteen(lo, w);
-        sixteen(hi, w);
-    }
-    let rest = chunks.into_remainder();
-    let mut chunks = rest.chunks_exact_mut(16);
-    for c in &mut chunks {
-        sixteen(c, w);
-    }
-    chunks.into_remainder().fill(w);
 }

@@ -241,30 +241,13 @@ impl<'a, K: StoredDepth> DepthBuffer<'a, K> {
     /// Sets every key to the farthest value ([`StoredDepth::FAR`]: 65535
     /// for `u16`).
     pub fn clear(&mut self) {
-        let l = self.keys.layout;
-        let far = |s: &mut [K]| {
+        self.keys.for_each_run(|run| {
             if cfg!(target_pointer_width = "64") {
-                s.fill(K::FAR);
+                run.fill(K::FAR);
             } else {
-                fill_far_words(s);
+                fill_far_words(run);
             }
-        };
-        if l.stride == l.width as usize {
-            // Rows without gaps: one fill (the layout's check keeps the
-            // product within the slice).
-            let n = l.width as usize * l.height as usize;
-            if let Some(s) = self.keys.buf.get_mut(..n) {
-                far(s);
-            }
-            return;
-        }
-        for row in 0..l.height as i32 {
-            if let Some((_, r)) = l.span(l.y0 + row, 0, l.width as u32) {
-                if let Some(s) = self.keys.buf.get_mut(r) {
-                    far(s);
-                }
-            }
-        }
+        });
     }
 
     /// Moves the buffer to frame rows `y0..y0+rows` (contents kept).

@@ -213,18 +213,28 @@ impl<'a, C: Copy> Band<'a, C> {
     /// Sets every pixel of the band to `color` (one pass over the slice
     /// when `stride == width`).
     pub fn clear(&mut self, color: C) {
+        self.for_each_run(|run| fill_unrolled(run, color));
+    }
+
+    /// Calls `f` on the band's pixels as runs that skip the stride
+    /// padding: the whole `width·height` prefix of the slice at once when
+    /// the rows lie end to end (`stride == width`), else each row. The
+    /// one walk for both clears ([`Self::clear`] and the depth buffer's).
+    pub(crate) fn for_each_run(&mut self, mut f: impl FnMut(&mut [C])) {
         let l = self.layout;
         if l.stride == l.width as usize {
-            // Rows without gaps: one fill (`Layout::new` checked that the
-            // slice holds them).
+            // `Layout::new` checked that the slice holds the rows.
             if let Some(all) = self.buf.get_mut(..l.width as usize * l.height as usize) {
-                fill_unrolled(all, color);
+                f(all);
             }
             return;
         }
-        let y0 = l.y0;
-        for y in y0..y0 + l.height as i32 {
-            self.fill_solid(y, 0, self.layout.width as u32, color);
+        for row in 0..l.height as i32 {
+            if let Some((_, r)) = l.span(l.y0 + row, 0, l.width as u32) {
+                if let Some(run) = self.buf.get_mut(r) {
+                    f(run);
+                }
+            }
         }
     }
 

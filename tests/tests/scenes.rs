@@ -19,7 +19,7 @@
 //! To bless after a deliberate change:
 //!
 //! ```text
-//! SIGHTLINE_BLESS=1 cargo test -p sightline-tests --test scenes golden
+//! SIGHTLINE_BLESS=1 cargo test --workspace --test scenes golden
 //! ```
 //!
 //! Without the variable a mismatch writes `<name>.png.new` beside the

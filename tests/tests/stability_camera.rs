@@ -5,7 +5,7 @@
 //! algorithm", 1997: centroid at 0, mean distance √2 for pixels and √3 for
 //! world points).
 //!
-//! `cargo test -p sightline-tests --test stability_camera -- --nocapture`
+//! `cargo test --workspace --test stability_camera -- --nocapture`
 
 use sightline::scalar::Scalar;
 use sightline::solve::{SolveError, solve};

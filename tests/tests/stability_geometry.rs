@@ -2,7 +2,7 @@
 //! outcome (a result within a stated bound, or a specific error) and
 //! prints what it measured, so the figures can be quoted.
 //!
-//! `cargo test -p sightline-tests --test stability_geometry -- --nocapture`
+//! `cargo test --workspace --test stability_geometry -- --nocapture`
 //!
 //! Part 1 (`stability_solver.rs`) has the stiff linear systems, the
 //! fixed-point overflow systems and the 1000-step rotation drift with and

@@ -3,7 +3,7 @@
 //! bound, or a specific error) and prints its measured error, so the figures
 //! can be quoted.
 //!
-//! `cargo test -p sightline-tests --test stability_solver -- --nocapture`
+//! `cargo test --workspace --test stability_solver -- --nocapture`
 
 use sightline::math::Mat3;
 use sightline::scalar::{I16F16, Scalar};

@@ -315,7 +315,7 @@ impl<C: Copy> Target for Band<'_, C> {
 /// 96 bytes. Pixels of two bytes take `pairs::fill_pairs` instead (two
 /// pixels a store); the loop below serves the other sizes.
 #[inline(never)]
-fn fill_unrolled<C: Copy>(row: &mut [C], color: C) {
+pub(crate) fn fill_unrolled<C: Copy>(row: &mut [C], color: C) {
     if super::pairs::fill_pairs(row, color) {
         return;
     }

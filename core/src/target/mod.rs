@@ -20,6 +20,7 @@ mod draw_target;
 mod framebuffer;
 #[cfg(feature = "depth")]
 pub(crate) use framebuffer::fill_run;
+#[cfg(feature = "depth")]
 pub(crate) use framebuffer::fill_unrolled as fill_pixels;
 pub(crate) mod layout;
 mod pairs;

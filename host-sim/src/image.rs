@@ -1,7 +1,6 @@
 //! Images in the scene color (Rgb565), PNG output and comparison.
 
 use sightline::scene::Color;
-use std::io::Write;
 use std::path::Path;
 
 use embedded_graphics::pixelcolor::RgbColor;
@@ -215,9 +214,4 @@ pub fn diff_rgb8(a: &Image, b: &Image) -> Vec<u8> {
             }
         })
         .collect()
-}
-
-/// Writes `text` then a newline, ignoring errors on a closed pipe.
-pub(crate) fn line(out: &mut dyn Write, text: &str) {
-    let _ = writeln!(out, "{text}");
 }

@@ -26,7 +26,8 @@
 //! hold at most [`MAX_PIXELS`] pixels — as many as one 4096×4096 image,
 //! the largest still size — that is 32 MiB per path in Rgb565.
 
-use crate::image::{Image, line};
+use crate::cli::line;
+use crate::image::Image;
 use crate::render::{self, LINES_AFTER, Method, Progress, ScalarKind};
 use indicatif::{ProgressBar, ProgressStyle};
 use sightline::math::Vec3;

@@ -84,7 +84,10 @@ pub fn pareto(file: &Path, t: &Table) -> Result<(), String> {
         }
     };
 
-    let root = BitMapBackend::new(file, SIZE).into_drawing_area();
+    // Drawn into memory and written by the simulator's own PNG encoder
+    // (plotters' file encoder would pull in the `image` crate).
+    let mut rgb = vec![0u8; SIZE.0 as usize * SIZE.1 as usize * 3];
+    let root = BitMapBackend::with_buffer(&mut rgb, SIZE).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(&e))?;
     let mut chart = ChartBuilder::on(&root)
         .caption(t.title, ("sans-serif", 17))
@@ -204,5 +207,7 @@ pub fn pareto(file: &Path, t: &Table) -> Result<(), String> {
             .map_err(|e| err(&e))?;
     }
     root.present().map_err(|e| err(&e))?;
-    Ok(())
+    drop(chart);
+    drop(root);
+    crate::image::write_rgb8_png(file, SIZE.0 as u16, SIZE.1 as u16, &rgb)
 }

@@ -505,6 +505,13 @@ where
                         }
                     }
                 }
+                // What the shader sees (see `shifted`).
+                if Sh::SHIFT != 0 && solid.is_none() {
+                    for k in 0..VARYINGS {
+                        (start[k], step[k]) =
+                            shifted::<Sh, VARYINGS>((start[k], step[k]), len as i32 - 1);
+                    }
+                }
                 // The varyings `i` pixels into the span.
                 let at = |i: u32| {
                     let mut v = start;
@@ -592,6 +599,30 @@ where
     } else {
         FillOutcome::Empty
     }
+}
+
+/// A varying's span start and step `(v, dv)` as shader `Sh` sees them:
+/// shifted left by [`SpanShader::SHIFT`] (wrapping; stepping commutes with
+/// the shift modulo 2^32). Shifted once a span, before the fused loop's
+/// closure captures them: shifted in the closure's per-pixel value
+/// instead, LLVM folds the shift back into the mask it was to remove.
+/// Debug builds first check that the span's first and last (`n` steps on)
+/// values lie in the shader's range: a set-up fault that let one wrap
+/// would be hidden by the shift.
+#[inline(always)]
+fn shifted<Sh: SpanShader<VARYINGS>, const VARYINGS: usize>(
+    (v, dv): (i32, i32),
+    n: i32,
+) -> (i32, i32) {
+    if Sh::SHIFT == 0 {
+        return (v, dv);
+    }
+    let (lo, hi) = Sh::RANGE;
+    debug_assert!(
+        (lo..=hi).contains(&v) && (lo..=hi).contains(&v.wrapping_add(dv.wrapping_mul(n))),
+        "a varying left the shader's range: span set-up did not clamp"
+    );
+    (v.wrapping_shl(Sh::SHIFT), dv.wrapping_shl(Sh::SHIFT))
 }
 
 // Each test is gated on the stages it needs.

@@ -428,7 +428,7 @@ fn split_fill<K: StoredDepth, C: Copy>(
 ) {
     passing_runs(keys, z, dz, |i, passed| {
         if let Some(run) = pixels.get_mut(i..i + passed) {
-            crate::target::fill_pixels(run, color);
+            crate::target::fill_unrolled(run, color);
         }
     });
 }

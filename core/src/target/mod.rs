@@ -21,7 +21,7 @@ mod framebuffer;
 #[cfg(feature = "depth")]
 pub(crate) use framebuffer::fill_run;
 #[cfg(feature = "depth")]
-pub(crate) use framebuffer::fill_unrolled as fill_pixels;
+pub(crate) use framebuffer::fill_unrolled;
 pub(crate) mod layout;
 mod pairs;
 mod rgb565;

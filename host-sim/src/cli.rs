@@ -1,4 +1,4 @@
-//! The command line: `sightline-sim [render|maze|compare|turntable|report]`.
+//! The command line: `sightline-sim [render|list|compare|report|help]`.
 
 use crate::image::{self, Image, agreement, diff_rgb8, write_rgb8_png};
 use crate::render::{self, Method, Progress, ScalarKind};

@@ -1,8 +1,9 @@
 //! Span shaders: what color each pixel of a span gets.
 //!
 //! A shader sees only the polygon's interpolated *varyings*: `VARYINGS` values in
-//! 16.16 fixed point, set up per span and stepped by one integer add per
-//! pixel. Per-pixel work is [`SpanShader::color`] plus those adds.
+//! 16.16 fixed point (shifted left by [`SpanShader::SHIFT`]), set up per span
+//! and stepped by one integer add per pixel. Per-pixel work is
+//! [`SpanShader::color`] plus those adds.
 
 use crate::target::Target;
 use embedded_graphics::pixelcolor::{Gray8, GrayColor, Rgb565, RgbColor};

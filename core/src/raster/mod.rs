@@ -608,15 +608,12 @@ where
 /// instead, LLVM folds the shift back into the mask it was to remove.
 /// Debug builds first check that the span's first and last (`n` steps on)
 /// values lie in the shader's range: a set-up fault that let one wrap
-/// would be hidden by the shift.
+/// would be hidden by the shift. Called only for shaders with a shift.
 #[inline(always)]
 fn shifted<Sh: SpanShader<VARYINGS>, const VARYINGS: usize>(
     (v, dv): (i32, i32),
     n: i32,
 ) -> (i32, i32) {
-    if Sh::SHIFT == 0 {
-        return (v, dv);
-    }
     let (lo, hi) = Sh::RANGE;
     debug_assert!(
         (lo..=hi).contains(&v) && (lo..=hi).contains(&v.wrapping_add(dv.wrapping_mul(n))),

@@ -50,6 +50,8 @@
 //! ([`affine_error_bound`]).
 
 mod texel;
+#[cfg(feature = "perspective")]
+pub(crate) use texel::MaskedTexels;
 pub use texel::{Clamp, Repeat, RepeatPow2, Texture, TextureError, Wrap};
 
 #[cfg(feature = "texture")]

@@ -57,6 +57,35 @@ pub(crate) fn divide(v: &[i32; 3]) -> (i64, i64) {
     (one(v[0]), one(v[1]))
 }
 
+/// [`divide`] where both quotients are small: `Some` with exactly
+/// [`divide`]'s values (as i32) when each magnitude is below
+/// [`EXACT_BELOW`] before the correction step, else `None`. The
+/// subdivided texture shader's fast path, which then steps in i32.
+#[inline]
+pub(crate) fn divide_small(v: &[i32; 3]) -> Option<(i32, i32)> {
+    let q = v[2].max(1) as u32;
+    let s = crate::scalar::normalize_shift(q);
+    #[cfg(all(target_arch = "arm", not(target_has_atomic = "ptr")))]
+    let mag = mag_halves;
+    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
+    let mag = mag_wide;
+    let r = recip62_above(q << s);
+    let sh = 62 - PERSPECTIVE_Q_BITS - s;
+    let one = |x: i32| -> Option<i32> {
+        let a = x.unsigned_abs();
+        let m = mag(a, r, sh);
+        if m >= EXACT_BELOW {
+            return None;
+        }
+        // As in `divide`; m < 2^29, so it is exact in i32.
+        let m = m as u32;
+        let rem = (a << PERSPECTIVE_Q_BITS).wrapping_sub(m.wrapping_mul(q));
+        let m = (m - u32::from((rem as i32) < 0)) as i32;
+        Some(if x < 0 { -m } else { m })
+    };
+    Some((one(v[0])?, one(v[1])?))
+}
+
 /// `a·r >> sh` for `r ≤ 2^32` (the product is below 2^64), in u64: what
 /// cores with a 32×32→64 multiply and a clz instruction run best (the
 /// Cortex-M4F lost 13 % of the corridor frame to [`mag_halves`]).

@@ -1474,6 +1474,65 @@ proptest! {
 
 #[cfg(feature = "perspective")]
 proptest! {
+    /// The small divide is the divide wherever it answers, and answers
+    /// wherever both quotients are below `EXACT_BELOW − 1` units.
+    #[test]
+    fn small_divide_is_the_divide(
+        u in prop_oneof![any::<i32>(), -(1i32 << 12)..(1 << 12)],
+        v in prop_oneof![any::<i32>(), -(1i32 << 20)..(1 << 20)],
+        q in prop_oneof![1i32..64, 1i32..(1 << 24), any::<i32>()],
+    ) {
+        use super::persp_div::{EXACT_BELOW, divide, divide_small};
+        let (a, b) = divide(&[u, v, q]);
+        match divide_small(&[u, v, q]) {
+            Some((x, y)) => prop_assert_eq!((x as i64, y as i64), (a, b)),
+            None => prop_assert!(a.unsigned_abs().max(b.unsigned_abs()) >= EXACT_BELOW - 1),
+        }
+    }
+
+    /// Exact mode samples the texel at the exact truncated quotients
+    /// (i128 oracle), on both sides of the small divide's range.
+    #[test]
+    fn exact_mode_samples_the_exact_quotient(
+        u in prop_oneof![any::<i32>(), -(1i32 << 20)..(1 << 20)],
+        v in prop_oneof![any::<i32>(), -(1i32 << 12)..(1 << 12)],
+        q in prop_oneof![1i32..64, 1i32..(1 << 24), any::<i32>()],
+    ) {
+        let texels: Vec<u16> = (0..64 * 32u32).map(|i| (i * 40503 % 65521) as u16).collect();
+        let tex = Texture::new(&texels, 64, 32, 64).unwrap();
+        let sh = PerspectiveTexture::<_, RepeatPow2, 1>::new(tex).unwrap();
+        let qq = q.max(1) as i128;
+        let texel = |x: i32| {
+            let t = ((x as i128) << PERSPECTIVE_Q_BITS) / qq;
+            (t >> 16).clamp(i32::MIN as i128, i32::MAX as i128) as i32
+        };
+        prop_assert_eq!(sh.color(&[u, v, q]), tex.sample::<RepeatPow2>(texel(u), texel(v)));
+    }
+
+    /// Quotients just below an integer, where the reciprocal's estimate
+    /// is one too high and only the remainder's sign corrects it.
+    #[test]
+    fn small_divide_corrects_its_estimate(
+        q in (1i64 << 25)..(1 << 26),
+        t in (1i64 << 26)..(1 << 29),
+        neg in any::<bool>(),
+    ) {
+        use super::persp_div::{divide, divide_small};
+        // u·2^24 just below (t + 1)·q: the quotient is t, its fraction
+        // above 1 − 2^24/q.
+        let u = (((t + 1) * q - 1) >> PERSPECTIVE_Q_BITS) as i32;
+        let u = if neg { -u } else { u };
+        let exact = ((u.unsigned_abs() as i64) << PERSPECTIVE_Q_BITS) / q;
+        let want = if neg { -exact } else { exact };
+        prop_assert_eq!(divide(&[u, 0, q as i32]).0, want);
+        if let Some((x, _)) = divide_small(&[u, 0, q as i32]) {
+            prop_assert_eq!(x as i64, want);
+        }
+    }
+}
+
+#[cfg(feature = "perspective")]
+proptest! {
     /// Subdivided runs with any varyings, including ones the pipeline never
     /// makes (q ≤ 0, u·q at the ends of i32, steps that wrap): no panic
     /// (debug builds check every operation), and the slice path writes the

@@ -19,10 +19,14 @@
 //!   `docs/mcu/tables.md` (`ipp persp`, `ipp persp16`).
 
 #[cfg(feature = "perspective")]
-use super::persp_div::divide;
+use super::PERSPECTIVE_Q_BITS;
+#[cfg(feature = "perspective")]
+use super::persp_div::{divide, divide_small};
 use super::shader::{ScalableColor, SpanShader, VARYING_FRAC_BITS};
 #[cfg(feature = "perspective")]
 use crate::target::Target;
+#[cfg(feature = "perspective")]
+use crate::texture::MaskedTexels;
 use crate::texture::{Texture, Wrap};
 use core::marker::PhantomData;
 
@@ -103,11 +107,16 @@ impl<C: ScalableColor, W: Wrap> SpanShader<3> for LitAffineTexture<'_, C, W> {
 ///
 /// `N` is the run length: 1 for a division per pixel, 8, 16 or 32 for
 /// subdivided affine runs (any `N ≥ 1` works; a power of two makes the
-/// step a shift). Every division is a division-free reciprocal, equal to
-/// the exact quotient or one unit of 2^−16 above it in magnitude (for |u|
-/// below 2^15 texels). With `N > 1`, (u, v) at every N-th pixel and at the
-/// span's last pixel come from it, and the pixels between are stepped
-/// linearly.
+/// step a shift). Every division below 2^13 texels is a division-free
+/// reciprocal with a remainder check, and gives the exact truncated
+/// quotient. Beyond that (rare), `N = 1` divides exactly with the crate's
+/// 64-bit division, and the ends of longer runs keep the reciprocal,
+/// above the quotient by at most `4·T/2^31 + 1` units of 2^−16 for a
+/// quotient of `T` units. With `N > 1`, (u, v) at every N-th pixel and at
+/// the span's last pixel come from it, and the pixels between are stepped
+/// linearly, in 32-bit arithmetic when every run end is below 2^13
+/// texels, and through masks instead of a multiply for [`RepeatPow2`](crate::texture::RepeatPow2)
+/// textures of at most 2^16 texels with a power-of-two stride.
 /// Feed it [`UvPerspective`](crate::pipeline::UvPerspective) vertices.
 #[cfg(feature = "perspective")]
 #[derive(Clone, Copy, Debug)]
@@ -167,6 +176,105 @@ impl<C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'_, C, W, N> {
 }
 
 #[cfg(feature = "perspective")]
+impl<C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'_, C, W, N> {
+    /// The slice path when every run end is small: each (u, v) from
+    /// [`divide_small`] (|u|, |v| below 2^13 texels, where the divide is
+    /// exact), so the steps and every pixel's value are i32 and the run
+    /// set-up has no 64-bit arithmetic. The same pixels as the general
+    /// path, whose run ends and steps are the same values in i64; `false`
+    /// (having written some pixels, all of which the general path then
+    /// overwrites with the same values) as soon as a run end is not
+    /// small.
+    #[inline]
+    fn small_runs(&self, pixels: &mut [C], start: [i32; 3], step: [i32; 3]) -> bool {
+        let n = N.max(1) as usize;
+        // One run ahead: `start + step·(i + N)` as `start + step·i + step·N`
+        // (equal modulo 2^32).
+        let ahead = step.map(|s| s.wrapping_mul(n as i32));
+        let mut v = start;
+        let Some(mut a) = divide_small(&v) else {
+            return false;
+        };
+        let masked = self.tex.masked::<W>();
+        let mut rest = pixels;
+        while rest.len() > n {
+            let (run, tail) = rest.split_at_mut(n);
+            for (vk, sk) in v.iter_mut().zip(&ahead) {
+                *vk = vk.wrapping_add(*sk);
+            }
+            let Some(b) = divide_small(&v) else {
+                return false;
+            };
+            // |a|, |b| < 2^29: no overflow. As the general path: a shift
+            // for a power of two, else a truncating division.
+            let d = if N.is_power_of_two() {
+                let k = N.trailing_zeros();
+                ((b.0 - a.0) >> k, (b.1 - a.1) >> k)
+            } else {
+                ((b.0 - a.0) / n as i32, (b.1 - a.1) / n as i32)
+            };
+            self.fill_small(masked, run, a, d);
+            a = b;
+            rest = tail;
+        }
+        // The last run (1 to N pixels) steps towards the span's last pixel.
+        let seg = rest.len() as i32;
+        if seg > 1 {
+            let i = (rest.len() - 1) as i32;
+            let last = [0, 1, 2].map(|k| v[k].wrapping_add(step[k].wrapping_mul(i)));
+            let Some(b) = divide_small(&last) else {
+                return false;
+            };
+            self.fill_small(
+                masked,
+                rest,
+                a,
+                ((b.0 - a.0) / (seg - 1), (b.1 - a.1) / (seg - 1)),
+            );
+        } else {
+            self.fill_small(masked, rest, a, (0, 0));
+        }
+        true
+    }
+
+    /// [`SpanShader::color`] beyond the small divide's range (|u| or |v|
+    /// of 2^13 texels or more): rare, so out of line, and the exact
+    /// truncated quotients by the crate's 64-bit division.
+    #[cold]
+    #[inline(never)]
+    fn color_wide(&self, v: &[i32; 3]) -> C {
+        let q = v[2].max(1) as i64;
+        let t = |x: i32| crate::scalar::div_rem_i64((x as i64) << PERSPECTIVE_Q_BITS, q).0;
+        self.tex
+            .sample::<W>(texel_coord(t(v[0])), texel_coord(t(v[1])))
+    }
+
+    /// One run from (u, v) = `a` by `d`, every value within i32 (see
+    /// [`Self::small_runs`]).
+    #[inline]
+    fn fill_small(
+        &self,
+        masked: Option<MaskedTexels<'_, C>>,
+        run: &mut [C],
+        a: (i32, i32),
+        d: (i32, i32),
+    ) {
+        if let Some(m) = masked {
+            m.fill_run(run, a, d);
+            return;
+        }
+        let (mut u, mut v) = a;
+        for p in run {
+            *p = self
+                .tex
+                .sample::<W>(u >> VARYING_FRAC_BITS, v >> VARYING_FRAC_BITS);
+            u = u.wrapping_add(d.0);
+            v = v.wrapping_add(d.1);
+        }
+    }
+}
+
+#[cfg(feature = "perspective")]
 #[inline]
 fn texel_coord(u: i64) -> i32 {
     (u >> VARYING_FRAC_BITS).clamp(i32::MIN as i64, i32::MAX as i64) as i32
@@ -181,8 +289,14 @@ impl<C: Copy, W: Wrap, const N: u32> SpanShader<3> for PerspectiveTexture<'_, C,
 
     #[inline]
     fn color(&self, v: &[i32; 3]) -> C {
-        let (u, t) = divide(v);
-        self.tex.sample::<W>(texel_coord(u), texel_coord(t))
+        // The same values either way; the small divide has no 64-bit
+        // arithmetic after its products.
+        if let Some((u, t)) = divide_small(v) {
+            return self
+                .tex
+                .sample::<W>(u >> VARYING_FRAC_BITS, t >> VARYING_FRAC_BITS);
+        }
+        self.color_wide(v)
     }
 
     fn shade_run<T: Target<Color = C>>(
@@ -253,6 +367,9 @@ impl<C: Copy, W: Wrap, const N: u32> SpanShader<3> for PerspectiveTexture<'_, C,
             }
         };
         if let Some(pixels) = target.span_mut(y, x, len) {
+            if self.small_runs(pixels, start, step) {
+                return;
+            }
             // Slice target: the same values as the general path below, one
             // run of N at a time in a tight loop.
             let mut i = 0u32;

@@ -174,8 +174,86 @@ impl<'a, C: Copy> Texture<'a, C> {
     }
 }
 
+/// A power-of-two texture sampled with masks ([`Texture::masked`]): the
+/// texture shaders' inner loop for [`RepeatPow2`], with no multiply and
+/// no bounds check per texel.
+#[cfg(feature = "perspective")]
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct MaskedTexels<'a, C> {
+    /// At least `2^bits` texels.
+    texels: &'a [C],
+    /// log2 of `stride·height`, at most 16.
+    bits: u32,
+    /// log2 of the stride.
+    row_shift: u32,
+    /// `width − 1`.
+    u_mask: u32,
+    /// `(height − 1)·stride`.
+    v_mask: u32,
+}
+
+#[cfg(feature = "perspective")]
+impl<'a, C: Copy> Texture<'a, C> {
+    /// The texture as [`MaskedTexels`] when `W` masks ([`Wrap::MASKS`]),
+    /// both sides and the stride are powers of two, `stride·height` is at
+    /// most 2^16 texels and the slice holds that many; else `None`.
+    /// Sampling it gives exactly what [`Texture::sample`]`::<W>` gives.
+    #[must_use]
+    pub(crate) fn masked<W: Wrap>(&self) -> Option<MaskedTexels<'a, C>> {
+        let (w, h, s) = (self.width as usize, self.height as usize, self.stride);
+        if !(W::MASKS && w.is_power_of_two() && h.is_power_of_two() && s.is_power_of_two()) {
+            return None;
+        }
+        let n = s.checked_mul(h).filter(|&n| n <= 1 << 16)?;
+        Some(MaskedTexels {
+            texels: self.texels.get(..n)?,
+            bits: n.trailing_zeros(),
+            row_shift: s.trailing_zeros(),
+            u_mask: w as u32 - 1,
+            v_mask: ((h - 1) * s) as u32,
+        })
+    }
+}
+
+#[cfg(feature = "perspective")]
+impl<C: Copy> MaskedTexels<'_, C> {
+    /// Fills `run` with the texels at (u, v) = `a`, `a + d`, `a + 2d`, …
+    /// in 16.16 texels (stepped modulo 2^32): pixel `j` is
+    /// `Texture::sample::<RepeatPow2>((a.0 + j·d.0) >> 16, (a.1 + j·d.1) >> 16)`.
+    ///
+    /// v is kept as `v·stride`: the row's bits of `(v·stride) >> 16`
+    /// are those of `⌊v⌋ mod height` times the stride, because
+    /// `log2(stride·height) ≤ 16` keeps them inside 32 bits, so one mask
+    /// gives the row offset.
+    #[inline(always)]
+    pub(crate) fn fill_run(&self, run: &mut [C], a: (i32, i32), d: (i32, i32)) {
+        // `t.len()` is a power of two, so `i & (t.len() − 1)` (a no-op:
+        // i ≤ (height−1)·stride + width − 1) needs no bounds check.
+        let n = 1usize << (self.bits & 31);
+        let Some(t) = self.texels.get(..n) else {
+            return;
+        };
+        let last = n - 1;
+        let (mut u, mut v) = (a.0 as u32, (a.1 as u32) << self.row_shift);
+        let (du, dv) = (d.0 as u32, (d.1 as u32) << self.row_shift);
+        for p in run {
+            let i = ((v >> 16) & self.v_mask) | ((u >> 16) & self.u_mask);
+            if let Some(&c) = t.get(i as usize & last) {
+                *p = c;
+            }
+            u = u.wrapping_add(du);
+            v = v.wrapping_add(dv);
+        }
+    }
+}
+
 /// How integer texel coordinates outside the texture map inside.
 pub trait Wrap: Copy + Debug + Default {
+    /// Whether [`Self::wrap`] is `i & (n − 1)` for every accepted `n`.
+    /// Shaders may then index a power-of-two texture with masks on
+    /// shifted coordinates instead of calling `wrap` (the perspective
+    /// texture shader does). Default `false`; only [`RepeatPow2`] sets it.
+    const MASKS: bool = false;
     /// Whether a texture side of `n` texels is supported.
     fn accepts(n: u16) -> bool;
     /// Maps `i` into `0..n` (`n ≥ 1`; the result is below `n` for every
@@ -206,6 +284,7 @@ impl Wrap for Repeat {
 }
 
 impl Wrap for RepeatPow2 {
+    const MASKS: bool = true;
     fn accepts(n: u16) -> bool {
         n.is_power_of_two()
     }
@@ -231,6 +310,63 @@ impl Wrap for Clamp {
 #[cfg(test)]
 mod tests {
     use super::*;
+    #[cfg(feature = "perspective")]
+    use proptest::prelude::*;
+
+    #[cfg(feature = "perspective")]
+    proptest! {
+        /// The masked sampler is `sample::<RepeatPow2>` at every pixel of a
+        /// run, for any start and step (wrapping ones included) and any
+        /// power-of-two shape it accepts, with row padding; and it
+        /// refuses exactly the shapes its doc excludes.
+        #[test]
+        fn masked_run_is_sample(
+            lw in 0u32..6, lh in 0u32..6, pad in 0u32..3, short in any::<bool>(),
+            a in any::<(i32, i32)>(), d in any::<(i32, i32)>(), small in any::<bool>(),
+            len in 0usize..40,
+        ) {
+            let (w, h, s) = (1usize << lw, 1usize << lh, 1usize << (lw + pad));
+            // `short`: only stride·(height−1) + width texels, which
+            // `Texture::new` accepts and the masked sampler must refuse
+            // when that is fewer than stride·height.
+            let n = if short { s * (h - 1) + w } else { s * h };
+            let texels: std::vec::Vec<u16> = (0..n as u32).map(|i| (i * 40503 % 65521) as u16).collect();
+            let tex = Texture::new(&texels, w as u16, h as u16, s).unwrap();
+            let d = if small { (d.0 >> 12, d.1 >> 12) } else { d };
+            match tex.masked::<RepeatPow2>() {
+                None => prop_assert!(n < s * h),
+                Some(m) => {
+                    prop_assert_eq!(n, s * h);
+                    let mut run = std::vec![0u16; len];
+                    m.fill_run(&mut run, a, d);
+                    for (j, &got) in run.iter().enumerate() {
+                        let u = a.0.wrapping_add(d.0.wrapping_mul(j as i32));
+                        let v = a.1.wrapping_add(d.1.wrapping_mul(j as i32));
+                        prop_assert_eq!(got, tex.sample::<RepeatPow2>(u >> 16, v >> 16), "pixel {}", j);
+                    }
+                }
+            }
+            prop_assert!(tex.masked::<Repeat>().is_none());
+        }
+    }
+
+    #[cfg(feature = "perspective")]
+    #[test]
+    fn masked_needs_powers_of_two_and_at_most_2_16_texels() {
+        let t = std::vec![0u8; 1 << 17];
+        let ok = |w, h, s| {
+            Texture::new(&t, w, h, s)
+                .unwrap()
+                .masked::<RepeatPow2>()
+                .is_some()
+        };
+        assert!(ok(256, 256, 256));
+        assert!(ok(64, 512, 128));
+        assert!(!ok(256, 512, 256), "2^17 texels");
+        assert!(!ok(4, 4, 6), "stride not a power of two");
+        assert!(!ok(3, 4, 4), "width not a power of two");
+        assert!(!ok(4, 3, 4), "height not a power of two");
+    }
 
     #[test]
     fn texture_validates_its_shape() {

@@ -32,7 +32,7 @@ pub enum FillMode {
     GouraudDepth,
     /// `AffineTexture` (64×64, power-of-two repeat), no depth.
     Affine,
-    /// `PerspectiveTexture<_, _, 1>`: a division per pixel, no depth.
+    /// `PerspectiveTexture<_, _, 1>`: exact mode, no depth.
     Perspective,
     /// `PerspectiveTexture<_, _, 16>`: divisions every 16 pixels, no depth.
     Perspective16,

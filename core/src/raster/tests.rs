@@ -1533,6 +1533,92 @@ proptest! {
 
 #[cfg(feature = "perspective")]
 proptest! {
+    /// Exact mode's stepped runs sample `color`'s texel at every pixel:
+    /// spans where the stepping applies (q up to 2^24, a few texels a
+    /// pixel, u either sign and crossing zero, small q where truncation
+    /// toward zero often crosses a texel) and spans where it must fall
+    /// back (large steps, q leaving its range, wrapping varyings).
+    #[test]
+    fn exact_runs_are_color(
+        x0 in prop_oneof![-(1i32 << 28)..(1 << 28), -(1i32 << 16)..(1 << 16), any::<i32>()],
+        dx in prop_oneof![-(1i32 << 18)..(1 << 18), -300i32..300, -(1i32 << 25)..(1 << 25), any::<i32>()],
+        y0 in -(1i32 << 24)..(1 << 24),
+        dy in -(1i32 << 12)..(1 << 12),
+        q0 in prop_oneof![1i32..64, 1i32..(1 << 16), 1i32..=(1 << 24), (1i32 << 24)..(1 << 30), any::<i32>()],
+        dq in prop_oneof![-64i32..64, -(1i32 << 14)..(1 << 14), any::<i32>()],
+        len in 1u32..240,
+    ) {
+        exact_runs_match_color([x0, y0, q0], [dx, dy, dq], len)?;
+    }
+
+    /// Exact mode where both ends' texels are clamped to i32 (u of 2^31
+    /// texels or more): the stepping must not start from them.
+    #[test]
+    fn exact_runs_with_clamped_texels(
+        x0 in (1i32 << 27)..(1 << 28), q0 in 1i32..8, dx in -64i32..64, len in 1u32..40,
+    ) {
+        exact_runs_match_color([x0, -x0, q0], [dx, dx, 0], len)?;
+    }
+
+    /// Exact mode where every pixel's u is a whole texel (E = 0 exactly:
+    /// the stepping must land on F, not one below).
+    #[test]
+    fn exact_runs_on_whole_texels(
+        a in 1i32..(1 << 16), k in -100i32..100, j in -3i32..=3, len in 1u32..240,
+    ) {
+        // q = 256·a and x = a·(k + j·i): u = x·2^8/q = k + j·i exactly.
+        exact_runs_match_color([a * k, a * k, 256 * a], [a * j, -a * j, 0], len)?;
+    }
+
+    /// Exact mode where truncating T toward zero crosses a texel: x < 0
+    /// and `x·2^8 mod q` within `⌈q/2^16⌉` below q (q > 2^16), built with
+    /// the inverse of 256 modulo an odd q.
+    #[test]
+    fn exact_runs_truncate_toward_zero(
+        q in prop_oneof![
+            ((1i64 << 16) + 1..(1 << 24)).prop_map(|q| q | 1),
+            // ⌈q/2^16⌉ is one more than ⌊q/2^16⌋ by a single unit.
+            (1i64..256).prop_map(|k| (k << 16) + 1),
+        ],
+        back in 1i64..256, m in 1i64..100, dx in -2000i32..2000, len in 1u32..40,
+    ) {
+        let window = (q + 0xffff) >> 16;
+        let r = q - 1 - (back % (window - 1).max(1));
+        // 2^−1 = (q + 1)/2 modulo odd q, so 256^−1 is its eighth power.
+        let inv = (0..8).fold(1, |acc, _| acc * ((q + 1) / 2) % q);
+        let x = (r * inv) % q - m * q;
+        prop_assert_eq!((x * 256).rem_euclid(q), r);
+        exact_runs_match_color([x as i32, 0, q as i32], [dx, 0, 0], len)?;
+    }
+}
+
+/// `PerspectiveTexture<_, _, 1>::shade_run` on a slice against `color` at
+/// every pixel, and nothing written past the run.
+#[cfg(feature = "perspective")]
+fn exact_runs_match_color(
+    start: [i32; 3],
+    step: [i32; 3],
+    len: u32,
+) -> Result<(), proptest::test_runner::TestCaseError> {
+    let texels: Vec<u8> = (0..64 * 32u32).map(|i| (i * 37 % 251) as u8).collect();
+    let tex = Texture::new(&texels, 64, 32, 64).unwrap();
+    let sh = PerspectiveTexture::<_, RepeatPow2, 1>::new(tex).unwrap();
+    let w = 240u16;
+    let mut got = vec![0u8; w as usize];
+    {
+        let mut fb = Framebuffer::new(&mut got, w, 1, w as usize).unwrap();
+        sh.shade_run(&mut fb, 0, 0, len, start, step);
+    }
+    for i in 0..len as i32 {
+        let v: [i32; 3] = core::array::from_fn(|k| start[k].wrapping_add(step[k].wrapping_mul(i)));
+        prop_assert_eq!(got[i as usize], sh.color(&v), "pixel {} of {}", i, len);
+    }
+    prop_assert!(got[len as usize..].iter().all(|&p| p == 0));
+    Ok(())
+}
+
+#[cfg(feature = "perspective")]
+proptest! {
     /// Subdivided runs with any varyings, including ones the pipeline never
     /// makes (q ≤ 0, u·q at the ends of i32, steps that wrap): no panic
     /// (debug builds check every operation), and the slice path writes the

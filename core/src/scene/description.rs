@@ -49,7 +49,8 @@ pub struct MeshData<'a> {
 pub enum TextureMode {
     /// Linear in screen space: cheap, distorted on steep polygons.
     Affine,
-    /// Perspective-correct, one (reciprocal) division per pixel.
+    /// Perspective-correct and exact: every pixel reads the texel of its
+    /// own (u·q)/q (`raster::PerspectiveTexture` with `N = 1`).
     Perspective,
     /// Per triangle, by [`choose_mapping`](crate::texture::choose_mapping):
     /// affine where the bound on affine mapping's error

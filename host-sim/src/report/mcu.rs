@@ -102,7 +102,7 @@ mod tests {
         else {
             panic!("no persp / persp16 rows in docs/mcu/tables.md");
         };
-        // A division per pixel costs more than one reciprocal per 16.
+        // Exact mode costs more than 16-pixel affine runs.
         assert!(exact > runs && runs > 0.0, "{exact} {runs}");
         assert!(matches!(lookup_span("no-such-shader"), McuCell::Gap(_)));
     }

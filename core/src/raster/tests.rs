@@ -1602,7 +1602,30 @@ fn exact_runs_match_color(
 ) -> Result<(), proptest::test_runner::TestCaseError> {
     let texels: Vec<u8> = (0..64 * 32u32).map(|i| (i * 37 % 251) as u8).collect();
     let tex = Texture::new(&texels, 64, 32, 64).unwrap();
-    let sh = PerspectiveTexture::<_, RepeatPow2, 1>::new(tex).unwrap();
+    check_exact_runs(
+        &PerspectiveTexture::<_, RepeatPow2, 1>::new(tex).unwrap(),
+        start,
+        step,
+        len,
+    )?;
+    // Clamp on a 5×3 texture: every bit of a texel coordinate matters, not
+    // only the low ones a power-of-two repeat keeps.
+    let tex = Texture::new(&texels[..15], 5, 3, 5).unwrap();
+    check_exact_runs(
+        &PerspectiveTexture::<_, crate::texture::Clamp, 1>::new(tex).unwrap(),
+        start,
+        step,
+        len,
+    )
+}
+
+#[cfg(feature = "perspective")]
+fn check_exact_runs<Sh: SpanShader<3, Color = u8>>(
+    sh: &Sh,
+    start: [i32; 3],
+    step: [i32; 3],
+    len: u32,
+) -> Result<(), proptest::test_runner::TestCaseError> {
     let w = 240u16;
     let mut got = vec![0u8; w as usize];
     {

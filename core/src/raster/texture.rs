@@ -10,7 +10,7 @@
 //! - [`PerspectiveTexture`] interpolates (u/z, v/z, 1/z), which *are*
 //!   linear in screen space, and divides. With `N = 1` (exact mode) every
 //!   pixel gets the texel of its own exact quotient: on a slice target a
-//!   division every 32 pixels, and an exact integer step of each texel
+//!   division every 64 pixels, and an exact integer step of each texel
 //!   coordinate between them. With `N = 8`, `16` or `32` it
 //!   computes (u, v) at every N-th pixel of a span (and at its last pixel)
 //!   and steps linearly between them (the classic subdivided affine
@@ -109,7 +109,7 @@ impl<C: ScalableColor, W: Wrap> SpanShader<3> for LitAffineTexture<'_, C, W> {
 ///
 /// `N` is the run length: 1 for exact mode (the texel of every pixel's
 /// own quotient; see [`SpanShader::color`], stepped exactly between
-/// divisions 32 pixels apart on slice targets), 8, 16 or 32 for
+/// divisions 64 pixels apart on slice targets), 8, 16 or 32 for
 /// subdivided affine runs (any `N ≥ 1` works; a power of two makes the
 /// step a shift). Every division below 2^13 texels is a division-free
 /// reciprocal with a remainder check, and gives the exact truncated
@@ -281,7 +281,8 @@ impl<C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'_, C, W, N> {
     /// `[1, 2^24]` at both ends (hence between them). That admits about
     /// 120 texels per run at q = 2^24 (z at the near plane), more further
     /// away. The texel is then F, or F + 1 for x < 0 when truncating `T`
-    /// toward zero crosses a texel (`E > q − ⌈q/2^16⌉`). A run outside
+    /// toward zero crosses a texel (`E > q − ⌈q/2^16⌉`), stored as i16
+    /// (the ends' texels are checked to lie within ±32766). A run outside
     /// those bounds, or whose varyings would wrap, takes `color` at every
     /// pixel (the same texels, a division each).
     fn exact_runs(&self, pixels: &mut [C], start: [i32; 3], step: [i32; 3]) {
@@ -291,7 +292,7 @@ impl<C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'_, C, W, N> {
         let mut rest = pixels;
         let mut i = 0usize;
         // Each run's texel coordinates, before sampling.
-        let (mut tu, mut tv) = ([0i32; EXACT_RUN], [0i32; EXACT_RUN]);
+        let (mut tu, mut tv) = ([0i16; EXACT_RUN], [0i16; EXACT_RUN]);
         while !rest.is_empty() {
             let n = rest.len().min(EXACT_RUN);
             let (run, tail) = rest.split_at_mut(n);
@@ -327,26 +328,31 @@ impl<C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'_, C, W, N> {
         (v, ta): ([i32; 3], (i32, i32)),
         (vb, tb): ([i32; 3], (i32, i32)),
         step: [i32; 3],
-        scratch: (&mut [i32; EXACT_RUN], &mut [i32; EXACT_RUN]),
+        scratch: (&mut [i16; EXACT_RUN], &mut [i16; EXACT_RUN]),
     ) -> bool {
         const Q_MAX: i32 = 1 << PERSPECTIVE_Q_BITS;
-        // Linear between the ends, with no wrap: a step below 2^26 moves
-        // a varying by less than 2^30 over a run, and the far end is then
-        // the true sum exactly when it did not overflow.
+        // Linear between the ends, with no wrap: a step below 2^30 / run
+        // length moves a varying by less than 2^30 over a run, and the far
+        // end is then the true sum exactly when it did not overflow.
         let m = run.len() as i32;
-        let linear = (0..3)
-            .all(|k| step[k].unsigned_abs() < 1 << 26 && v[k].checked_add(step[k] * m).is_some());
+        let linear = (0..3).all(|k| {
+            step[k].unsigned_abs() < (1 << 30) / EXACT_RUN as u32
+                && v[k].checked_add(step[k] * m).is_some()
+        });
         let q_ok = |q: i32| (1..=Q_MAX).contains(&q);
         if !(linear && q_ok(v[2]) && q_ok(vb[2])) {
             return false;
         }
-        // Unclamped texels (so F is within one of each), few enough apart
-        // that (d + 3)·q < 2^31 for q up to the larger end's: checked as
-        // (d + 3)·(⌊q/2^12⌋ + 1) < 2^19, within u32 for d < 2^12.
+        // Texels within ±32766 (unclamped, so F is within one of each,
+        // and every texel between, one beyond at most, fits i16), few
+        // enough apart that (d + 3)·q < 2^31 for q up to the larger end's:
+        // checked as (d + 3)·(⌊q/2^12⌋ + 1) < 2^19, within u32 for d < 2^12.
         let q_units = (v[2].max(vb[2]) >> 12) as u32 + 1;
         let near = |a: i32, b: i32| {
             let d = a.abs_diff(b);
-            d < 1 << 12 && (d + 3) * q_units < 1 << 19 && a.unsigned_abs() < 1 << 30
+            d < 1 << 12
+                && (d + 3) * q_units < 1 << 19
+                && a.unsigned_abs().max(b.unsigned_abs()) < i16::MAX as u32
         };
         if !(near(ta.0, tb.0) && near(ta.1, tb.1)) {
             return false;
@@ -363,9 +369,9 @@ impl<C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'_, C, W, N> {
     /// `run[j]` = the texel at `(u[j], v[j])`. Out of line: inlined into
     /// the run loop of [`Self::exact_runs`], it spilled.
     #[inline(never)]
-    fn sample_run(&self, run: &mut [C], u: &[i32], v: &[i32]) {
+    fn sample_run(&self, run: &mut [C], u: &[i16], v: &[i16]) {
         for ((p, &x), &y) in run.iter_mut().zip(u).zip(v) {
-            *p = self.tex.sample::<W>(x, y);
+            *p = self.tex.sample::<W>(x.into(), y.into());
         }
     }
 
@@ -395,11 +401,12 @@ impl<C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'_, C, W, N> {
 }
 
 /// Pixels per run of exact mode's stepping: one division per run, and
-/// two i32 arrays of this length on the stack. On ARMv6-M (`ipp persp`):
-/// 97.99 instructions per pixel with 16, 79.64 with 32, 68.67 with 64;
-/// 32 keeps the texture firmware's stack 256 bytes smaller than 64.
+/// two arrays of this length on the stack. On ARMv6-M (`ipp persp`), with
+/// i32 arrays: 97.99 instructions per pixel with 16, 79.64 with 32, 68.67
+/// with 64; with i16 arrays (texels within ±32766, else the run divides
+/// per pixel) 64 costs 70.95 and the stack of 32 i32 entries, 256 bytes.
 #[cfg(feature = "perspective")]
-const EXACT_RUN: usize = 32;
+const EXACT_RUN: usize = 64;
 
 /// Exact mode's texel coordinate at each pixel of a run (see
 /// `exact_runs`): x and q step by `dx` and `dq`, q stays in `[1, 2^24]`,
@@ -409,7 +416,7 @@ const EXACT_RUN: usize = 32;
 /// x < 0 (exactly when F < 0) and `E > q − ⌈q/2^16⌉`.
 #[cfg(feature = "perspective")]
 #[inline(never)]
-fn floor_run(out: &mut [i32], x: i32, dx: i32, mut q: i32, dq: i32, mut f: i32) {
+fn floor_run(out: &mut [i16], x: i32, dx: i32, mut q: i32, dq: i32, mut f: i32) {
     // E from the previous pixel's: x·2^8 − f·q moves by dx·2^8 − f·dq
     // (wrapping, as E itself: only its true value is bounded).
     let mut e = (x << 8).wrapping_sub(f.wrapping_mul(q));
@@ -424,11 +431,11 @@ fn floor_run(out: &mut [i32], x: i32, dx: i32, mut q: i32, dq: i32, mut f: i32) 
             e -= q;
         }
         // F < 0 exactly when x < 0.
-        *t = if f < 0 && e > q - ((q + 0xffff) >> 16) {
+        *t = (if f < 0 && e > q - ((q + 0xffff) >> 16) {
             f + 1
         } else {
             f
-        };
+        }) as i16;
         e = e.wrapping_add(dx8).wrapping_sub(f.wrapping_mul(dq));
         q = q.wrapping_add(dq);
     }

@@ -34,22 +34,12 @@ pub(crate) const EXACT_BELOW: u64 = 1 << 29;
 /// with this.)
 #[inline]
 pub(crate) fn divide(v: &[i32; 3]) -> (i64, i64) {
-    // q in [1, 2^31); s in [0, 30].
-    let q = v[2].max(1) as u32;
-    let s = crate::scalar::normalize_shift(q);
-    #[cfg(all(target_arch = "arm", not(target_has_atomic = "ptr")))]
-    let mag = mag_halves;
-    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "ptr"))))]
-    let mag = mag_wide;
-    let r = recip62_above(q << s);
-    let sh = 62 - PERSPECTIVE_Q_BITS - s;
+    let (q, estimate) = estimator(v[2]);
     let one = |x: i32| -> i64 {
         let a = x.unsigned_abs();
-        let mut m = mag(a, r, sh);
+        let mut m = estimate(a);
         if m < EXACT_BELOW {
-            // |u·q|·2^24 − m·q in (−q, q): its low 32 bits, read as i32.
-            let rem = (a << PERSPECTIVE_Q_BITS).wrapping_sub((m as u32).wrapping_mul(q));
-            m -= u64::from((rem as i32) < 0);
+            m -= u64::from(one_above(a, m as u32, q));
         }
         // m < 2^55 (sh ≥ 8), so it fits i64 either way.
         if x < 0 { -(m as i64) } else { m as i64 }
@@ -63,7 +53,26 @@ pub(crate) fn divide(v: &[i32; 3]) -> (i64, i64) {
 /// subdivided texture shader's fast path, which then steps in i32.
 #[inline]
 pub(crate) fn divide_small(v: &[i32; 3]) -> Option<(i32, i32)> {
-    let q = v[2].max(1) as u32;
+    let (q, estimate) = estimator(v[2]);
+    let one = |x: i32| -> Option<i32> {
+        let a = x.unsigned_abs();
+        let m = estimate(a);
+        if m >= EXACT_BELOW {
+            return None;
+        }
+        // m < 2^29, so it is exact in i32.
+        let m = (m as u32 - u32::from(one_above(a, m as u32, q))) as i32;
+        Some(if x < 0 { -m } else { m })
+    };
+    Some((one(v[0])?, one(v[1])?))
+}
+
+/// `q = max(q, 1)` and the estimate `a ↦ e = a·r >> (38 − s)` of the
+/// truncated quotient `⌊a·2^24 / q⌋` (see [`divide`]: never below it).
+#[inline(always)]
+fn estimator(q: i32) -> (u32, impl Fn(u32) -> u64) {
+    // q in [1, 2^31); s in [0, 30].
+    let q = q.max(1) as u32;
     let s = crate::scalar::normalize_shift(q);
     #[cfg(all(target_arch = "arm", not(target_has_atomic = "ptr")))]
     let mag = mag_halves;
@@ -71,19 +80,16 @@ pub(crate) fn divide_small(v: &[i32; 3]) -> Option<(i32, i32)> {
     let mag = mag_wide;
     let r = recip62_above(q << s);
     let sh = 62 - PERSPECTIVE_Q_BITS - s;
-    let one = |x: i32| -> Option<i32> {
-        let a = x.unsigned_abs();
-        let m = mag(a, r, sh);
-        if m >= EXACT_BELOW {
-            return None;
-        }
-        // As in `divide`; m < 2^29, so it is exact in i32.
-        let m = m as u32;
-        let rem = (a << PERSPECTIVE_Q_BITS).wrapping_sub(m.wrapping_mul(q));
-        let m = (m - u32::from((rem as i32) < 0)) as i32;
-        Some(if x < 0 { -m } else { m })
-    };
-    Some((one(v[0])?, one(v[1])?))
+    (q, move |a| mag(a, r, sh))
+}
+
+/// Whether the estimate `m` (the truncated quotient of `a·2^24` by `q`,
+/// or one above it, below [`EXACT_BELOW`]) is the one above: then
+/// `a·2^24 − m·q`, which lies in `(−q, q)` and so is exact in its low 32
+/// bits read as i32, is negative.
+#[inline(always)]
+fn one_above(a: u32, m: u32, q: u32) -> bool {
+    ((a << PERSPECTIVE_Q_BITS).wrapping_sub(m.wrapping_mul(q)) as i32) < 0
 }
 
 /// `a·r >> sh` for `r ≤ 2^32` (the product is below 2^64), in u64: what

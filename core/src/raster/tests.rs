@@ -1551,6 +1551,26 @@ proptest! {
         exact_runs_match_color([x0, y0, q0], [dx, dy, dq], len)?;
     }
 
+    /// The same near zero: F = ⌊x·2^8/q⌋ = −2, where the truncation puts
+    /// the texel at −1 and the run's ends' texels may all be ≥ −1 (the
+    /// sign test must not be skipped there). The x are found by scanning
+    /// F = −2's interval for residues in the window.
+    #[test]
+    fn exact_runs_truncate_toward_zero_near_zero(
+        q in ((1i64 << 16) + 1..(1 << 22)).prop_map(|q| q | 1),
+        dx in -3i32..=3, len in 1u32..70,
+    ) {
+        let window = (q + 0xffff) >> 16;
+        let xs: Vec<i64> = (-(2 * q) / 256 - 1..=-q / 256)
+            .filter(|&x| (x * 256).div_euclid(q) == -2 && (x * 256).rem_euclid(q) > q - window)
+            .collect();
+        // About one q in four has such an x (the residues step by 256
+        // through a window narrower than that); the others check nothing.
+        for x in xs {
+            exact_runs_match_color([x as i32, 0, q as i32], [dx, 0, 0], len)?;
+        }
+    }
+
     /// Exact mode where both ends' texels are clamped to i32 (u of 2^31
     /// texels or more): the stepping must not start from them.
     #[test]

@@ -360,8 +360,19 @@ impl<C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'_, C, W, N> {
         // One coordinate at a time (fewer live values than both at once:
         // ARMv6-M has eight low registers), then the texels.
         let (tu, tv) = scratch;
-        floor_run(&mut tu[..run.len()], v[0], step[0], v[2], step[2], ta.0);
-        floor_run(&mut tv[..run.len()], v[1], step[1], v[2], step[2], ta.1);
+        // Where both ends' texels are at least 1, F ≥ 0 (x ≥ 0) throughout
+        // and the loop needs no sign test.
+        for (out, x, dx, a, b) in [
+            (&mut *tu, v[0], step[0], ta.0, tb.0),
+            (&mut *tv, v[1], step[1], ta.1, tb.1),
+        ] {
+            let out = &mut out[..run.len()];
+            if a.min(b) >= 1 {
+                floor_run::<false>(out, x, dx, v[2], step[2], a);
+            } else {
+                floor_run::<true>(out, x, dx, v[2], step[2], a);
+            }
+        }
         self.sample_run(run, &tu[..], &tv[..]);
         true
     }
@@ -413,10 +424,19 @@ const EXACT_RUN: usize = 64;
 /// and `f`, starting from the first pixel's texel, stays close enough to
 /// `F = ⌊x·2^8 / q⌋` that `|x·2^8 − f·q| < 2^31`. Each pixel steps `f` to
 /// F with `E = x·2^8 − F·q` in `[0, q)`, then writes F, or F + 1 when
-/// x < 0 (exactly when F < 0) and `E > q − ⌈q/2^16⌉`.
+/// x < 0 (exactly when F < 0) and `E > q − ⌈q/2^16⌉`. Without `SIGNED`
+/// the caller has shown F ≥ 0 throughout, and the sign test is left out
+/// (ARMv6-M `ipp persp` 70.95 → 65.31, corridor frame −4.9 %, 200 bytes).
 #[cfg(feature = "perspective")]
 #[inline(never)]
-fn floor_run(out: &mut [i16], x: i32, dx: i32, mut q: i32, dq: i32, mut f: i32) {
+fn floor_run<const SIGNED: bool>(
+    out: &mut [i16],
+    x: i32,
+    dx: i32,
+    mut q: i32,
+    dq: i32,
+    mut f: i32,
+) {
     // E from the previous pixel's: x·2^8 − f·q moves by dx·2^8 − f·dq
     // (wrapping, as E itself: only its true value is bounded).
     let mut e = (x << 8).wrapping_sub(f.wrapping_mul(q));
@@ -430,8 +450,8 @@ fn floor_run(out: &mut [i16], x: i32, dx: i32, mut q: i32, dq: i32, mut f: i32) 
             f += 1;
             e -= q;
         }
-        // F < 0 exactly when x < 0.
-        *t = (if f < 0 && e > q - ((q + 0xffff) >> 16) {
+        // F < 0 exactly when x < 0 (never without `SIGNED`).
+        *t = (if SIGNED && f < 0 && e > q - ((q + 0xffff) >> 16) {
             f + 1
         } else {
             f
@@ -452,7 +472,7 @@ impl<C: Copy, W: Wrap, const N: u32> SpanShader<3> for PerspectiveTexture<'_, C,
     type Color = C;
     // Runs of N > 1 step between exact divisions, which `color` alone
     // cannot reproduce. Exact mode (N = 1) gives `color`'s values, but
-    // its own run (a division every 16 pixels, stepped exactly between)
+    // its own run (a division every 64 pixels, stepped exactly between)
     // is far cheaper than `color` at every pixel, so the depth test hands
     // it runs too.
     const PER_PIXEL: bool = false;

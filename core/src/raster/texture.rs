@@ -144,43 +144,20 @@ impl<'a, C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'a, C, W, N> {
 
 #[cfg(feature = "perspective")]
 impl<C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'_, C, W, N> {
-    /// Pixels of one run from (u, v) = `a` stepping by `d` (16.16), where
-    /// `d` is `b − a` divided (rounded either way) by the run's length or
-    /// one less, so every value of the run lies within `run.len()` units
-    /// of the range between `a` and `b`.
+    /// Pixels of one run of the general slice path from (u, v) = `a`
+    /// stepping by `d` (16.16), in i64. Only spans with a run end beyond
+    /// [`Self::small_runs`]' range (2^13 texels) get here, so it keeps no
+    /// i32 loop of its own.
     #[inline]
-    fn fill_run(&self, run: &mut [C], a: (i64, i64), b: (i64, i64), d: (i64, i64)) {
-        // No multiplication (a 64-bit one is a library call on ARMv6-M):
-        // both ends with a margin of one unit per pixel.
-        let m = run.len() as i64;
-        let (lo, hi) = (i32::MIN as i64 + m, i32::MAX as i64 - m);
-        let fits = |v: i64, w: i64| lo <= v.min(w) && v.max(w) <= hi;
-        if fits(a.0, b.0) && fits(a.1, b.1) {
-            // Every value lies within i32 (see above), so `>> 16` equals
-            // `texel_coord`, and the i32 steps, even where `d` itself does
-            // not fit (a 2-pixel run), wrap back to the true values.
-            let (mut u, mut v) = (a.0 as i32, a.1 as i32);
-            let (du, dv) = (d.0 as i32, d.1 as i32);
-            for p in run {
-                *p = self
-                    .tex
-                    .sample::<W>(u >> VARYING_FRAC_BITS, v >> VARYING_FRAC_BITS);
-                u = u.wrapping_add(du);
-                v = v.wrapping_add(dv);
-            }
-        } else {
-            let mut cur = a;
-            for p in run {
-                *p = self.tex.sample::<W>(texel_coord(cur.0), texel_coord(cur.1));
-                cur.0 += d.0;
-                cur.1 += d.1;
-            }
+    fn fill_run(&self, run: &mut [C], a: (i64, i64), d: (i64, i64)) {
+        let mut cur = a;
+        for p in run {
+            *p = self.tex.sample::<W>(texel_coord(cur.0), texel_coord(cur.1));
+            cur.0 += d.0;
+            cur.1 += d.1;
         }
     }
-}
 
-#[cfg(feature = "perspective")]
-impl<C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'_, C, W, N> {
     /// The slice path when every run end is small: each (u, v) from
     /// [`divide_small`] (|u|, |v| below 2^13 texels, where the divide is
     /// exact), so the steps and every pixel's value are i32 and the run
@@ -565,7 +542,7 @@ impl<C: Copy, W: Wrap, const N: u32> SpanShader<3> for PerspectiveTexture<'_, C,
             for run in pixels.chunks_mut(N as usize) {
                 let seg = run.len() as u32;
                 let (d, next) = run_step(i, seg, a);
-                self.fill_run(run, a, next, d);
+                self.fill_run(run, a, d);
                 a = next;
                 i += seg;
             }

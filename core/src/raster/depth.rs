@@ -433,6 +433,56 @@ fn split_fill<K: StoredDepth, C: Copy>(
     });
 }
 
+/// [`fused_run`] for a span of 64 pixels or more on ARMv6-M (as
+/// [`split_fill`] for one color): the keys first ([`passing_runs`]), then
+/// each run of passing pixels written by a loop of its own, four pixels
+/// an iteration. Fused, the loop keeps the depth, the varyings, their
+/// steps, the keys, the pixels and the shader's table live together, more
+/// than the seven low registers, and spilled three of them (18
+/// instructions per pixel for Gouraud + depth). Split, each loop has
+/// registers to spare.
+///
+/// `bash tests/mcu/run`, ARMv6-M, fused -> split (both with the
+/// eight-key [`store_passing`]): ipp Gouraud + depth 18.26 -> 13.63
+/// (14.88 with a one-pixel color loop, 140 bytes less in the Gouraud
+/// firmware); the textured, depth-tested corridor-affine scene frame
+/// 3 951 557 -> 3 622 225; W2 6 001 835 -> 5 973 787. The banded bunny,
+/// none of whose spans is this long, pays the length test per span:
+/// 9 028 943 -> 9 069 577 (0.45 %). 344 bytes more in the Gouraud
+/// firmware, 636 in the texture one (an instance per shader). Short spans
+/// keep the fused loop: a run costs two calls and the loop's set-up.
+#[cfg(feature = "depth")]
+#[inline(never)]
+fn split_write<K: StoredDepth, C, F: FnMut(u32) -> C>(
+    keys: &mut [K],
+    pixels: &mut [C],
+    z: i32,
+    dz: i32,
+    mut color: F,
+) {
+    let n = keys.len().min(pixels.len());
+    let keys = keys.get_mut(..n).unwrap_or(&mut []);
+    passing_runs(keys, z, dz, |i, passed| {
+        if let Some(run) = pixels.get_mut(i..i + passed) {
+            let mut j = i as u32;
+            let mut quads = run.chunks_exact_mut(4);
+            for quad in &mut quads {
+                if let [a, b, c, d] = quad {
+                    *a = color(j);
+                    *b = color(j + 1);
+                    *c = color(j + 2);
+                    *d = color(j + 3);
+                }
+                j += 4;
+            }
+            for p in quads.into_remainder() {
+                *p = color(j);
+                j += 1;
+            }
+        }
+    });
+}
+
 /// Tests and stores the keys of `row` against the depths `z + i·dz`, and
 /// calls `pass(i, n)` for each maximal run of `n` passing keys from `i`,
 /// left to right. Two tight loops (skip failing pixels, then store passing
@@ -483,8 +533,14 @@ impl<K: StoredDepth> DepthBuffer<'_, K> {
         mut color: F,
     ) {
         if let Some(keys) = self.exact_keys(y, x, pixels.len()) {
-            // The whole span is inside (the scan converter's case).
-            fused_run(keys, pixels, z, dz, color);
+            // The whole span is inside (the scan converter's case). Long
+            // spans on ARMv6-M take the split loops (see `split_write`).
+            if cfg!(all(target_arch = "arm", not(target_has_atomic = "ptr"))) && pixels.len() >= 64
+            {
+                split_write(keys, pixels, z, dz, color);
+            } else {
+                fused_run(keys, pixels, z, dz, color);
+            }
             return;
         }
         let len = u32::try_from(pixels.len()).unwrap_or(u32::MAX);
@@ -527,38 +583,67 @@ fn skip_failing<K: StoredDepth>(row: &[K], mut z: i32, dz: i32) -> (usize, i32) 
 }
 
 /// Stores leading keys that pass (key < stored); returns the count and
-/// the z after them. Two keys a loop iteration: on ARMv6-M perspective +
-/// depth went from 68.80 to 66.80 instructions per pixel (`ipp
-/// persp16-depth`, `bash tests/mcu/run`; 43.50 -> 42.50 on the Cortex-M4).
+/// the z after them (after the last key of `row`, the z past it is
+/// returned only up to bit 30, see below; the callers do not use it).
+///
+/// Eight keys a loop iteration, each six instructions on ARMv6-M (shift,
+/// load, compare, branch, store, step). The z carried from one iteration
+/// to the next is passed through `(z << 1) >> 1`, which keeps every depth
+/// the span set-up makes (`0..=65535·256+255`) and costs two instructions
+/// an iteration: without it, LLVM's loop strength reduction rewrote the
+/// keys' depths as `z + k·dz` from the iteration's first, and kept the
+/// multiples `2dz`, `3dz`, … on the stack (34 instructions for four keys).
+/// The sign-extending shift hides the recurrence from it, and the steps
+/// stay one add each. The loop itself walks one pointer; the count is
+/// recovered from the address of the key that fails.
+///
+/// `bash tests/mcu/run`, two keys an iteration before -> eight now, on
+/// ARMv6-M: ipp flat + depth 8.76 -> 7.38 (`split_fill`), persp16 + depth
+/// 50.56 -> 49.18; the flat cube scene frame 851 184 -> 779 198, the
+/// corridor's 7 752 712 -> 7 667 609; on the Cortex-M4 persp16 + depth
+/// 35.00 -> 33.50. W1/W2 do not run it (their spans take the fused
+/// loops). 140 bytes more in the flat firmware.
 #[cfg(feature = "depth")]
 #[inline(never)]
 fn store_passing<K: StoredDepth>(row: &mut [K], mut z: i32, dz: i32) -> (usize, i32) {
-    let mut n = 0;
-    let mut pairs = row.chunks_exact_mut(2);
-    for pair in &mut pairs {
-        if let [a, b] = pair {
-            let Some(key) = K::passes(z, *a) else {
-                return (n, z);
+    let (base, len) = (row.as_ptr() as usize, row.len());
+    // The index of key `k` in `row` (`K` is u16 or u32, never zero-sized).
+    let at = |k: &mut K| (core::ptr::from_mut(k) as usize - base) / core::mem::size_of::<K>();
+    // Stores key `$d`'s depth `z` if it passes; else returns its index.
+    macro_rules! key {
+        ($d:ident, $index:expr) => {
+            let Some(key) = K::passes(z, *$d) else {
+                return ($index, z);
             };
-            *a = key;
-            z = z.wrapping_add(dz);
-            let Some(key) = K::passes(z, *b) else {
-                return (n + 1, z);
-            };
-            *b = key;
-            z = z.wrapping_add(dz);
-        }
-        n += 2;
-    }
-    for d in pairs.into_remainder() {
-        let Some(key) = K::passes(z, *d) else {
-            return (n, z);
+            *$d = key;
         };
-        *d = key;
-        z = z.wrapping_add(dz);
-        n += 1;
     }
-    (n, z)
+    let mut octets = row.chunks_exact_mut(8);
+    for octet in &mut octets {
+        if let [k0, k1, k2, k3, k4, k5, k6, k7] = octet {
+            key!(k0, at(k0));
+            z = z.wrapping_add(dz);
+            key!(k1, at(k0) + 1);
+            z = z.wrapping_add(dz);
+            key!(k2, at(k0) + 2);
+            z = z.wrapping_add(dz);
+            key!(k3, at(k0) + 3);
+            z = z.wrapping_add(dz);
+            key!(k4, at(k0) + 4);
+            z = z.wrapping_add(dz);
+            key!(k5, at(k0) + 5);
+            z = z.wrapping_add(dz);
+            key!(k6, at(k0) + 6);
+            z = z.wrapping_add(dz);
+            key!(k7, at(k0) + 7);
+            z = (z.wrapping_add(dz) << 1) >> 1;
+        }
+    }
+    for d in octets.into_remainder() {
+        key!(d, at(d));
+        z = z.wrapping_add(dz);
+    }
+    (len, z)
 }
 
 #[cfg(all(test, feature = "depth"))]
@@ -591,7 +676,9 @@ mod tests {
     /// the stored key), for every length up to 11 (odd and even, so both
     /// the lone first pixel and the pairs), and lengths around and above
     /// the 64 pixels from which [`split_fill`] takes over on ARMv6-M (it
-    /// is also checked on its own), stored keys
+    /// is also checked on its own, and so is [`split_write`], the route of
+    /// the varying shaders' long spans there, with a color per pixel
+    /// index), stored keys
     /// that make runs pass and fail (random keys, and mostly far keys for
     /// long passing runs), both key widths, 1- and 2-byte pixels (the
     /// latter filled two a store), and slices of unequal length (only the
@@ -602,20 +689,25 @@ mod tests {
         where
             P: Copy + From<u8> + PartialEq + core::fmt::Debug,
         {
-            for len in (0..12usize).chain([63, 64, 65, 66, 100, 131]) {
+            for len in (0..12usize).chain([15, 16, 17, 24, 63, 64, 65, 66, 71, 100, 131]) {
                 // Out of 8, how many stored keys are far (pass surely).
                 let far = [0, 4, 7, 8][rng.int(0, 3) as usize];
                 for extra in [0usize, 0, 0, 1, 3] {
-                    let z0 = rng.int(0, 200 << DEPTH_FRAC_BITS) as i32;
+                    // Near depths, or the far end of the range (keys
+                    // above 2^15, depths above 2^23).
+                    let top = [0, 65000 << DEPTH_FRAC_BITS][rng.int(0, 1) as usize];
+                    let z0 = top + rng.int(0, 200 << DEPTH_FRAC_BITS) as i32;
                     let dz = rng.int(-600, 600) as i32;
-                    // Within the set-up's range at every pixel.
+                    // Within the set-up's range at every pixel
+                    // (0..=65535·256+255: at most 65000·256 + 51 200 +
+                    // 600·134 here).
                     let z0 = z0.max(-dz * (len as i32 + 3)).max(0);
                     let stored: Vec<K> = (0..len + extra)
                         .map(|_| {
                             if rng.int(0, 7) < far {
                                 K::FAR
                             } else {
-                                K::from_z(rng.int(0, 260 << DEPTH_FRAC_BITS) as i32)
+                                K::from_z(top + rng.int(0, 260 << DEPTH_FRAC_BITS) as i32)
                             }
                         })
                         .collect();
@@ -644,6 +736,22 @@ mod tests {
                     split_fill(&mut keys2, &mut px2, z0, dz, P::from(7));
                     assert_eq!(keys2, want_keys[..n], "split: len {len} z {z0} dz {dz}");
                     assert_eq!(px2, want_px[..n], "split: len {len} z {z0} dz {dz}");
+                    // And `split_write`, with a color per index.
+                    let (mut keys3, mut px3) = (keys[..n].to_vec(), px[..n].to_vec());
+                    let shade = |i: u32| P::from((i % 250) as u8 + 1);
+                    split_write(&mut keys3, &mut px3, z0, dz, shade);
+                    let want3: Vec<P> = (0..n)
+                        .map(|i| {
+                            let passed = want_px[i] == P::from(7);
+                            if passed { shade(i as u32) } else { P::from(0) }
+                        })
+                        .collect();
+                    assert_eq!(
+                        keys3,
+                        want_keys[..n],
+                        "split write: len {len} z {z0} dz {dz}"
+                    );
+                    assert_eq!(px3, want3, "split write: len {len} z {z0} dz {dz}");
                     fused_fill(&mut keys, &mut px, z0, dz, P::from(7));
                     assert_eq!(keys, want_keys, "len {len} z {z0} dz {dz}");
                     assert_eq!(px, want_px, "len {len} z {z0} dz {dz}");

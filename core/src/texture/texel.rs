@@ -236,13 +236,35 @@ impl<C: Copy> MaskedTexels<'_, C> {
         let last = n - 1;
         let (mut u, mut v) = (a.0 as u32, (a.1 as u32) << self.row_shift);
         let (du, dv) = (d.0 as u32, (d.1 as u32) << self.row_shift);
-        for p in run {
-            let i = ((v >> 16) & self.v_mask) | ((u >> 16) & self.u_mask);
-            if let Some(&c) = t.get(i as usize & last) {
+        let (vm, um) = (self.v_mask, self.u_mask);
+        let texel = |u: u32, v: u32| {
+            let i = ((v >> 16) & vm) | ((u >> 16) & um);
+            t.get(i as usize & last).copied()
+        };
+        // Two pixels an iteration: the masks, the texels and the step
+        // reloaded from the stack (ARMv6-M has seven low registers for
+        // ten values here) serve both. `bash tests/mcu/run`, ipp persp16
+        // and persp16 + depth: ARMv6-M 42.56 -> 41.74 and 49.18 -> 48.37,
+        // Cortex-M4 26.00 -> 23.06 and 33.50 -> 30.56.
+        let mut pairs = run.chunks_exact_mut(2);
+        for pair in &mut pairs {
+            if let [p0, p1] = pair {
+                if let Some(c) = texel(u, v) {
+                    *p0 = c;
+                }
+                u = u.wrapping_add(du);
+                v = v.wrapping_add(dv);
+                if let Some(c) = texel(u, v) {
+                    *p1 = c;
+                }
+                u = u.wrapping_add(du);
+                v = v.wrapping_add(dv);
+            }
+        }
+        for p in pairs.into_remainder() {
+            if let Some(c) = texel(u, v) {
                 *p = c;
             }
-            u = u.wrapping_add(du);
-            v = v.wrapping_add(dv);
         }
     }
 }

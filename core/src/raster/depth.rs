@@ -354,7 +354,7 @@ fn fused_run<K: StoredDepth, C, F: FnMut(u32) -> C>(
 /// W1 5.63 M -> 5.58 M, 44 bytes more in the flat firmware. The varying
 /// shaders keep [`fused_run`]'s one-pixel loop: paired, the per-span
 /// set-up of their indexed color closure cost W2 0.5 % (its spans
-/// average 2.5 pixels). On ARMv6-M a span of 64 pixels or more takes
+/// average 2.5 pixels). On 32-bit Arm a span of 64 pixels or more takes
 /// [`split_fill`] instead.
 #[cfg(feature = "depth")]
 #[inline(never)]
@@ -377,8 +377,8 @@ fn fused_fill<K: StoredDepth, C: Copy>(
     let (Some(mut keys), Some(mut pixels)) = (keys.get_mut(..n), pixels.get_mut(..n)) else {
         return;
     };
-    // ARMv6-M only (as `passes16_wide`): see `split_fill`.
-    if cfg!(all(target_arch = "arm", not(target_has_atomic = "ptr"))) && n >= 64 {
+    // 32-bit Arm only: see `split_fill`.
+    if cfg!(target_arch = "arm") && n >= 64 {
         split_fill(keys, pixels, z, dz, color);
         return;
     }
@@ -410,13 +410,22 @@ fn fused_fill<K: StoredDepth, C: Copy>(
 /// 5 060 469 (the length test per span), for 208 bytes in the flat
 /// firmware. With the split from 16 pixels on, the cube frame was 868 740
 /// instead: on its spans, the three calls per run cost more than the
-/// pairs save. Only ARMv6-M takes this route: on the Cortex-M4, whose
-/// fused loop keeps everything in registers, the same split took flat +
-/// depth from 10.00 to 9.26 but the cube frame from 775 163 to 790 617
-/// (I16F16) and x86-64 W1 from 3.22 M to 3.23 M.
-/// (Unrolled by four, the key loop spilled: LLVM's loop strength
-/// reduction kept `dz`, `2dz` and `3dz` apart, and the loop took 34
-/// instructions per four keys.)
+/// pairs save. (Unrolled by four, the key loop spilled: LLVM's loop
+/// strength reduction kept `dz`, `2dz` and `3dz` apart, and the loop took
+/// 34 instructions per four keys; [`store_passing`] now hides the
+/// recurrence from it.)
+///
+/// The Cortex-M4 took this route too once [`store_passing`] stored eight
+/// keys an iteration (before, with two, its cube frame rose from 775 163
+/// to 790 617). `bash tests/mcu/run`, Cortex-M4, fused -> split for both
+/// flat and varying spans ([`split_write`]): ipp flat + depth 10.00 ->
+/// 7.76, Gouraud + depth 15.00 -> 13.50; scene frames f32 cube 773 198 ->
+/// 710 510, corridor-affine 2 678 503 -> 2 539 330, bunny 6 223 483 ->
+/// 6 191 371 (I16F16 cube 775 163 -> 712 539); but W1 / W2, whose spans
+/// are a few pixels, pay the length tests: f32 3 252 991 / 3 755 565 ->
+/// 3 264 948 / 3 771 952 (0.4 %). 152 bytes more in the thumbv7em flat
+/// firmware, 512 in the Gouraud one. x86-64 keeps the fused loops (its
+/// `memset` and registers serve them).
 #[cfg(feature = "depth")]
 #[inline(never)]
 fn split_fill<K: StoredDepth, C: Copy>(
@@ -433,12 +442,12 @@ fn split_fill<K: StoredDepth, C: Copy>(
     });
 }
 
-/// [`fused_run`] for a span of 64 pixels or more on ARMv6-M (as
+/// [`fused_run`] for a span of 64 pixels or more on 32-bit Arm (as
 /// [`split_fill`] for one color): the keys first ([`passing_runs`]), then
 /// each run of passing pixels written by a loop of its own, four pixels
 /// an iteration. Fused, the loop keeps the depth, the varyings, their
 /// steps, the keys, the pixels and the shader's table live together, more
-/// than the seven low registers, and spilled three of them (18
+/// than ARMv6-M's seven low registers, and spilled three of them (18
 /// instructions per pixel for Gouraud + depth). Split, each loop has
 /// registers to spare.
 ///
@@ -450,7 +459,8 @@ fn split_fill<K: StoredDepth, C: Copy>(
 /// none of whose spans is this long, pays the length test per span:
 /// 9 028 943 -> 9 069 577 (0.45 %). 344 bytes more in the Gouraud
 /// firmware, 636 in the texture one (an instance per shader). Short spans
-/// keep the fused loop: a run costs two calls and the loop's set-up.
+/// keep the fused loop: a run costs two calls and the loop's set-up. The
+/// Cortex-M4's figures are at [`split_fill`].
 #[cfg(feature = "depth")]
 #[inline(never)]
 fn split_write<K: StoredDepth, C, F: FnMut(u32) -> C>(
@@ -534,9 +544,8 @@ impl<K: StoredDepth> DepthBuffer<'_, K> {
     ) {
         if let Some(keys) = self.exact_keys(y, x, pixels.len()) {
             // The whole span is inside (the scan converter's case). Long
-            // spans on ARMv6-M take the split loops (see `split_write`).
-            if cfg!(all(target_arch = "arm", not(target_has_atomic = "ptr"))) && pixels.len() >= 64
-            {
+            // spans on 32-bit Arm take the split loops (see `split_write`).
+            if cfg!(target_arch = "arm") && pixels.len() >= 64 {
                 split_write(keys, pixels, z, dz, color);
             } else {
                 fused_run(keys, pixels, z, dz, color);
@@ -675,7 +684,7 @@ mod tests {
     /// `(z + i·dz) >> 8` stored, and the color written, where it is below
     /// the stored key), for every length up to 11 (odd and even, so both
     /// the lone first pixel and the pairs), and lengths around and above
-    /// the 64 pixels from which [`split_fill`] takes over on ARMv6-M (it
+    /// the 64 pixels from which [`split_fill`] takes over on 32-bit Arm (it
     /// is also checked on its own, and so is [`split_write`], the route of
     /// the varying shaders' long spans there, with a color per pixel
     /// index), stored keys
@@ -729,7 +738,7 @@ mod tests {
                         }
                     }
                     let mut px = vec![P::from(0); plen];
-                    // The split route directly too (only ARMv6-M takes it
+                    // The split route directly too (only 32-bit Arm takes it
                     // from `fused_fill`), on the common prefix.
                     let n = klen.min(plen);
                     let (mut keys2, mut px2) = (keys[..n].to_vec(), px[..n].to_vec());

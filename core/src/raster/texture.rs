@@ -404,6 +404,11 @@ const EXACT_RUN: usize = 64;
 /// x < 0 (exactly when F < 0) and `E > q − ⌈q/2^16⌉`. Without `SIGNED`
 /// the caller has shown F ≥ 0 throughout, and the sign test is left out
 /// (ARMv6-M `ipp persp` 70.95 → 65.31, corridor frame −4.9 %, 200 bytes).
+/// The step of E, `dx·2^8 − f·dq`, is kept up to date as f moves (one
+/// add per texel crossed) instead of multiplied at each pixel: ARMv6-M
+/// `ipp persp` 65.31 → 60.59, corridor frame 7 667 609 → 7 414 592;
+/// Cortex-M4 45.72 → 43.76, f32 corridor frame 5 234 445 → 5 219 269;
+/// 12 bytes (`bash tests/mcu/run`).
 #[cfg(feature = "perspective")]
 #[inline(never)]
 fn floor_run<const SIGNED: bool>(
@@ -414,18 +419,21 @@ fn floor_run<const SIGNED: bool>(
     dq: i32,
     mut f: i32,
 ) {
-    // E from the previous pixel's: x·2^8 − f·q moves by dx·2^8 − f·dq
-    // (wrapping, as E itself: only its true value is bounded).
+    // E from the previous pixel's: x·2^8 − f·q moves by h = dx·2^8 − f·dq
+    // (wrapping, as E itself: only its true value is bounded), and h
+    // moves by ∓dq as f steps by ±1.
     let mut e = (x << 8).wrapping_sub(f.wrapping_mul(q));
-    let dx8 = dx << 8;
+    let mut h = (dx << 8).wrapping_sub(f.wrapping_mul(dq));
     for t in out {
         while e < 0 {
             f -= 1;
             e += q;
+            h = h.wrapping_add(dq);
         }
         while e >= q {
             f += 1;
             e -= q;
+            h = h.wrapping_sub(dq);
         }
         // F < 0 exactly when x < 0 (never without `SIGNED`).
         *t = (if SIGNED && f < 0 && e > q - ((q + 0xffff) >> 16) {
@@ -433,7 +441,7 @@ fn floor_run<const SIGNED: bool>(
         } else {
             f
         }) as i16;
-        e = e.wrapping_add(dx8).wrapping_sub(f.wrapping_mul(dq));
+        e = e.wrapping_add(h);
         q = q.wrapping_add(dq);
     }
 }

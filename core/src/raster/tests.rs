@@ -1580,6 +1580,33 @@ proptest! {
         exact_runs_match_color([x0, -x0, q0], [dx, dx, 0], len)?;
     }
 
+    /// ARMv6-M's paired sampling pass of exact mode writes what sampling
+    /// each pixel gives, for runs of every length up to 70 (odd ones end
+    /// with a lone pixel), coordinates anywhere in i16 (wrapped or
+    /// clamped), and coordinate slices longer than the run.
+    #[test]
+    fn paired_sampling_is_per_pixel(
+        uv in proptest::collection::vec(any::<(i16, i16)>(), 0..70),
+        extra in 0usize..3,
+    ) {
+        let texels: Vec<u16> = (0..64 * 32u32).map(|i| (i * 40503 % 65521) as u16).collect();
+        let (u, v): (Vec<i16>, Vec<i16>) = uv.iter().copied().unzip();
+        let n = u.len().saturating_sub(extra);
+        let tex = Texture::new(&texels, 64, 32, 64).unwrap();
+        let sh = PerspectiveTexture::<_, RepeatPow2, 1>::new(tex).unwrap();
+        let mut run = vec![0u16; n];
+        sh.sample_pairs(&mut run, &u, &v);
+        for (j, &got) in run.iter().enumerate() {
+            prop_assert_eq!(got, tex.sample::<RepeatPow2>(u[j].into(), v[j].into()), "pixel {}", j);
+        }
+        let tex = Texture::new(&texels, 5, 3, 7).unwrap();
+        let sh = PerspectiveTexture::<_, Clamp, 1>::new(tex).unwrap();
+        sh.sample_pairs(&mut run, &u, &v);
+        for (j, &got) in run.iter().enumerate() {
+            prop_assert_eq!(got, tex.sample::<Clamp>(u[j].into(), v[j].into()), "pixel {}", j);
+        }
+    }
+
     /// Exact mode where every pixel's u is a whole texel (E = 0 exactly:
     /// the stepping must land on F, not one below).
     #[test]

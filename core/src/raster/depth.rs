@@ -618,39 +618,35 @@ fn store_passing<K: StoredDepth>(row: &mut [K], mut z: i32, dz: i32) -> (usize, 
     let (base, len) = (row.as_ptr() as usize, row.len());
     // The index of key `k` in `row` (`K` is u16 or u32, never zero-sized).
     let at = |k: &mut K| (core::ptr::from_mut(k) as usize - base) / core::mem::size_of::<K>();
-    // Stores key `$d`'s depth `z` if it passes; else returns its index.
+    // Stores key `$d`'s depth `z` if it passes and steps z; else returns
+    // the key's index.
     macro_rules! key {
         ($d:ident, $index:expr) => {
             let Some(key) = K::passes(z, *$d) else {
                 return ($index, z);
             };
             *$d = key;
+            z = z.wrapping_add(dz);
+        };
+    }
+    // `key!` for each of the keys after `$k0;`, the n-th at index
+    // `at($k0) + n`.
+    macro_rules! keys {
+        ($k0:ident; $n:expr;) => {};
+        ($k0:ident; $n:expr; $d:ident $($rest:ident)*) => {
+            key!($d, at($k0) + $n);
+            keys!($k0; $n + 1; $($rest)*);
         };
     }
     let mut octets = row.chunks_exact_mut(8);
     for octet in &mut octets {
         if let [k0, k1, k2, k3, k4, k5, k6, k7] = octet {
-            key!(k0, at(k0));
-            z = z.wrapping_add(dz);
-            key!(k1, at(k0) + 1);
-            z = z.wrapping_add(dz);
-            key!(k2, at(k0) + 2);
-            z = z.wrapping_add(dz);
-            key!(k3, at(k0) + 3);
-            z = z.wrapping_add(dz);
-            key!(k4, at(k0) + 4);
-            z = z.wrapping_add(dz);
-            key!(k5, at(k0) + 5);
-            z = z.wrapping_add(dz);
-            key!(k6, at(k0) + 6);
-            z = z.wrapping_add(dz);
-            key!(k7, at(k0) + 7);
-            z = (z.wrapping_add(dz) << 1) >> 1;
+            keys!(k0; 0; k0 k1 k2 k3 k4 k5 k6 k7);
+            z = (z << 1) >> 1;
         }
     }
     for d in octets.into_remainder() {
         key!(d, at(d));
-        z = z.wrapping_add(dz);
     }
     (len, z)
 }

@@ -43,22 +43,26 @@ from collections import defaultdict
 
 # (stage, regular expression on a demangled frame's function name). A frame
 # names a stage when it matches; `pixels` frames count as pixels only
-# inside `fill_polygon` (outside it, the same fills are a clear).
+# inside a triangle fill (`fill_small_triangle`, `fill_polygon`; outside
+# them, the same fills are a clear). The names are today's: `tests/mcu/run`
+# fails when `other` grows past a few per cent of a frame, which is what a
+# rename that leaves a rule behind looks like.
 STAGES = [
-    ("clear", r"Target>::fill_solid$|fill_unrolled$|DepthBuffer<K>::clear$"),
-    ("vertices", r"Renderer<S>::project(::\{\{closure\}\})?$|::project_vertex$|::project_vertices$"),
+    ("clear", r"Target>::fill_solid$|fill_unrolled$|Target>::clear$|Band<C>::clear(::\{\{closure\}\})?$|DepthBuffer<K>::clear(::\{\{closure\}\})?$|raster::depth::fill_far_words$"),
+    ("vertices", r"Renderer<S>::project(::\{\{closure\}\})?$|::project_vertex$|::project_vertices$|Projection<S>::project$|Pipeline<S>::project$|Mat3<S>::from_angles$|Angles<S>>::to_mat3$"),
     ("lighting", r"(Prepared|Normal)Light<S>::intensity$|PreparedLight<S>::shade$|quantize_intensity$|ScalableColor>::scale$"),
-    ("dispatch", r"scene::render::Tri<S>::draw(::\{\{closure\}\})?$|scene::render::Frame<S>::draw(::\{\{closure\}\})?$"),
-    ("culling", r"Pipeline<S>>::keep_inside$|Pipeline<S>>::keep$"),
+    ("dispatch", r"scene::render::Tri<S,_>::draw(::\{\{closure\}\})?$|scene::render::Frame<S>::draw(_with|_unclipped)?(::\{\{closure\}\})?$|scene::render::misses_rows$"),
+    ("culling", r"Pipeline<S>>?::keep_inside$|Pipeline<S>>?::keep$"),
     ("clipping", r"::project_polygon$|sightline::pipeline::clip::"),
-    ("set-up", r"Gradient::new(::\{\{closure\}\})?$|EdgeStepper(32)?::new$|raster::edge::first_center$|raster::gradient::cross(::\{\{closure\}\})?$"),
-    ("edges", r"sightline::raster::fill_polygon(::\{\{closure\}\})?$|sightline::raster::chain_row$|EdgeStepper(32)?::step$"),
-    ("spans", r"Gradient::span(_with)?$"),
-    ("pixels", r"raster::depth::fused_run$|DepthTest>::test_write$|DepthBuffer<K>::write_passing(::\{\{closure\}\})?$|Layout::span_exact$|::span_mut$|::exact_span_mut$|::clipped_span_mut$|SpanShader<.*>::span$|raster::texture::"),
+    ("set-up", r"Gradient::new(::\{\{closure\}\})?$|AreaRecip::new$|EdgeStepper(32)?::new$|raster::edge::first_center$|raster::gradient::cross(::\{\{closure\}\})?$|sightline::raster::area2$"),
+    ("edges", r"sightline::raster::(fill_polygon|fill_small_triangle|fill)(::\{\{closure\}\})?$|sightline::raster::chain_row$|EdgeStepper(32)?::step$"),
+    ("spans", r"Gradient::span(_with|_tiny)?$"),
+    ("pixels", r"sightline::raster::depth::|DepthTest>::test_(write|fill)$|Layout::span_exact$|::span_mut$|::exact_span_mut$|::clipped_span_mut$|SpanShader<.*>::span$|raster::texture::"),
 ]
 ORDER = [s for s, _ in STAGES] + ["other"]
 RULES = [(s, re.compile(r)) for s, r in STAGES]
-PIXEL_FILLS = re.compile(r"Target>::fill_solid$|fill_unrolled$")
+PIXEL_FILLS = re.compile(r"Target>::fill_solid$|fill_unrolled$|sightline::target::framebuffer::fill_run(::\w+)?$|sightline::raster::depth::fill_words$")
+TRIANGLE_FILLS = re.compile(r"sightline::raster::(fill_polygon|fill_small_triangle)$")
 
 
 def load(path):
@@ -120,10 +124,12 @@ def chains(elf, addrs):
 
 
 def stage_of(chain):
-    inside_fill = any(re.search(r"sightline::raster::fill_polygon", f) for f in chain)
+    inside_fill = any(TRIANGLE_FILLS.search(f) for f in chain)
     for f in chain:
-        if inside_fill and PIXEL_FILLS.search(f):
-            return "pixels"
+        if PIXEL_FILLS.search(f):
+            if inside_fill:
+                return "pixels"
+            continue
         for s, r in RULES:
             if r.search(f):
                 return s

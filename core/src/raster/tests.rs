@@ -1341,6 +1341,74 @@ proptest! {
     }
 }
 
+#[cfg(all(feature = "gouraud", feature = "depth"))]
+proptest! {
+    /// Polygons (as the clipper makes them) whose planes fit their extent
+    /// take the 32-bit span route: every pixel and key as the general
+    /// route gives them. The extent is that of all the vertices, not only
+    /// the basis triangle's (a span outside it fails a debug assertion in
+    /// `fill`); radii up to 600 pixels reach past the 32-bit route's
+    /// bounds, where the general route must be taken.
+    #[test]
+    fn polygon_spans_match_general_route(
+        cx in -100i32..500, cy in -100i32..400,
+        rx in 1i32..9_600, ry in 1i32..9_600,
+        angles in proptest::collection::vec(0.0f64..core::f64::consts::TAU, 4..9),
+        zs in proptest::collection::vec(0u16..=u16::MAX, 8),
+        vs in proptest::collection::vec(0i32..256, 8),
+        clip_x in 0u16..30, clip_y in 0u16..20,
+    ) {
+        let (w, h) = (48u16, 36u16);
+        let n = w as usize * h as usize;
+        let ramp = ramp_u8();
+        let poly: Vec<ScreenVertex<1>> = ellipse_poly(cx * 16, cy * 16, rx, ry, &angles)
+            .iter()
+            .enumerate()
+            .map(|(k, p)| ScreenVertex::new(p.x, p.y, zs[k % 8], [vs[k % 8] << 16]))
+            .collect();
+        let mut out = Vec::new();
+        for general in [false, true] {
+            super::GENERAL_SPANS.with(|g| g.set(general));
+            let (mut c, mut z) = (vec![0u8; n], vec![u16::MAX; n]);
+            let o = {
+                let mut band = Band::new(&mut c, w, h - clip_y, w as usize, clip_y as i32).unwrap();
+                let mut d = DepthBuffer::new(&mut z, w - clip_x, h, w as usize, 0).unwrap();
+                fill_polygon(&mut band, &mut d, &Gouraud::new(&ramp), &poly)
+            };
+            super::GENERAL_SPANS.with(|g| g.set(false));
+            out.push((o, c, z));
+        }
+        prop_assert_eq!(&out[0], &out[1]);
+    }
+}
+
+/// The comparison above compares something: polygons of a few hundred
+/// pixels with Gouraud and depth planes take the 32-bit route.
+#[cfg(all(feature = "gouraud", feature = "depth"))]
+#[test]
+fn polygons_take_the_32_bit_route() {
+    let ramp = ramp_u8();
+    let (w, h) = (48u16, 36u16);
+    let n = w as usize * h as usize;
+    let (mut c, mut z) = (vec![0u8; n], vec![u16::MAX; n]);
+    let mut fb = Framebuffer::new(&mut c, w, h, w as usize).unwrap();
+    let mut d = DepthBuffer::new(&mut z, w, h, w as usize, 0).unwrap();
+    let v = |x: i32, y: i32, z: u16, i: i32| ScreenVertex::new(x * 16, y * 16, z, [i << 16]);
+    let pentagon = [
+        v(4, 2, 100, 10),
+        v(40, 4, 3000, 200),
+        v(44, 20, 9000, 90),
+        v(20, 34, 500, 30),
+        v(2, 18, 1200, 250),
+    ];
+    let before = super::TINY_FILLS.with(|t| t.get());
+    assert_eq!(
+        fill_polygon(&mut fb, &mut d, &Gouraud::new(&ramp), &pentagon),
+        FillOutcome::Drawn
+    );
+    assert_eq!(super::TINY_FILLS.with(|t| t.get()), before + 1);
+}
+
 /// Draws two triangles covering the same 32×32 square in both orders with
 /// a `K` depth buffer; returns how many pixels differ between the orders.
 #[cfg(feature = "depth")]

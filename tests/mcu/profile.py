@@ -49,7 +49,7 @@ from collections import defaultdict
 # rename that leaves a rule behind looks like.
 STAGES = [
     ("clear", r"Target>::fill_solid$|fill_unrolled$|Target>::clear$|Band<C>::clear(::\{\{closure\}\})?$|DepthBuffer<K>::clear(::\{\{closure\}\})?$|raster::depth::fill_far_words$"),
-    ("vertices", r"Renderer<S>::project(::\{\{closure\}\})?$|::project_vertex$|::project_vertices$|Projection<S>::project$|Pipeline<S>::project$|Mat3<S>::from_angles$|Angles<S>>::to_mat3$"),
+    ("vertices", r"Renderer<S>::project(::\{\{closure\}\})?$|::project_vertex$|::project_vertices$|Projection<S>::project$|Pipeline<S>::project$"),
     ("lighting", r"(Prepared|Normal)Light<S>::intensity$|PreparedLight<S>::shade$|quantize_intensity$|ScalableColor>::scale$"),
     ("dispatch", r"scene::render::Tri<S,_>::draw(::\{\{closure\}\})?$|scene::render::Frame<S>::draw(_with|_unclipped)?(::\{\{closure\}\})?$|scene::render::misses_rows$"),
     ("culling", r"Pipeline<S>>?::keep_inside$|Pipeline<S>>?::keep$"),

@@ -1382,8 +1382,8 @@ proptest! {
     }
 }
 
-/// The comparison above compares something: polygons of a few hundred
-/// pixels with Gouraud and depth planes take the 32-bit route.
+/// The comparison above compares something: a pentagon some 40 pixels
+/// across with Gouraud and depth planes takes the 32-bit route.
 #[cfg(all(feature = "gouraud", feature = "depth"))]
 #[test]
 fn polygons_take_the_32_bit_route() {

@@ -377,8 +377,7 @@ fn fused_fill<K: StoredDepth, C: Copy>(
     let (Some(mut keys), Some(mut pixels)) = (keys.get_mut(..n), pixels.get_mut(..n)) else {
         return;
     };
-    // 32-bit Arm only: see `split_fill`.
-    if cfg!(target_arch = "arm") && n >= 64 {
+    if takes_split_route(n) {
         split_fill(keys, pixels, z, dz, color);
         return;
     }
@@ -440,6 +439,15 @@ fn split_fill<K: StoredDepth, C: Copy>(
             crate::target::fill_unrolled(run, color);
         }
     });
+}
+
+/// Whether a depth-tested span of `n` pixels takes the split loops
+/// ([`split_fill`], [`split_write`]) instead of the fused ones: spans of
+/// 64 pixels or more, on 32-bit Arm only (the figures are at those two).
+#[cfg(feature = "depth")]
+#[inline(always)]
+fn takes_split_route(n: usize) -> bool {
+    cfg!(target_arch = "arm") && n >= 64
 }
 
 /// [`fused_run`] for a span of 64 pixels or more on 32-bit Arm (as
@@ -543,9 +551,8 @@ impl<K: StoredDepth> DepthBuffer<'_, K> {
         mut color: F,
     ) {
         if let Some(keys) = self.exact_keys(y, x, pixels.len()) {
-            // The whole span is inside (the scan converter's case). Long
-            // spans on 32-bit Arm take the split loops (see `split_write`).
-            if cfg!(target_arch = "arm") && pixels.len() >= 64 {
+            // The whole span is inside (the scan converter's case).
+            if takes_split_route(pixels.len()) {
                 split_write(keys, pixels, z, dz, color);
             } else {
                 fused_run(keys, pixels, z, dz, color);

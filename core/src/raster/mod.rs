@@ -459,12 +459,10 @@ where
         u32::MAX
     } else {
         let o = bv[0];
-        let d =
-            |p: &ScreenVertex<VARYINGS>| (p.x - o.x).unsigned_abs().max((p.y - o.y).unsigned_abs());
         if small_triangle.is_some() {
-            d(bv[1]).max(d(bv[2]))
+            distance_from(bv[1], o).max(distance_from(bv[2], o))
         } else {
-            polygon_extent(verts, (o.x, o.y))
+            polygon_extent(verts, o)
         }
     };
     let tiny = small
@@ -633,12 +631,20 @@ where
 /// (f32), which draws every triangle through `fill_polygon`, took
 /// 6 164 218 instructions instead of 6 064 489.
 #[inline(never)]
-fn polygon_extent<const VARYINGS: usize>(verts: &[ScreenVertex<VARYINGS>], o: (i32, i32)) -> u32 {
-    verts
-        .iter()
-        .map(|p| (p.x - o.0).unsigned_abs().max((p.y - o.1).unsigned_abs()))
-        .max()
-        .unwrap_or(0)
+fn polygon_extent<const VARYINGS: usize>(
+    verts: &[ScreenVertex<VARYINGS>],
+    o: &ScreenVertex<VARYINGS>,
+) -> u32 {
+    verts.iter().map(|p| distance_from(p, o)).max().unwrap_or(0)
+}
+
+/// The larger of `p`'s coordinate distances (28.4) from `o`.
+#[inline(always)]
+fn distance_from<const VARYINGS: usize>(
+    p: &ScreenVertex<VARYINGS>,
+    o: &ScreenVertex<VARYINGS>,
+) -> u32 {
+    (p.x - o.x).unsigned_abs().max((p.y - o.y).unsigned_abs())
 }
 
 #[cfg(test)]

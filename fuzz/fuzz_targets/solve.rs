@@ -319,7 +319,10 @@ fn check<T: Scalar, const N: usize, const M: usize>(vals: &[f64]) {
     } else {
         q(n * fixed_residual_bound(N, 2.0 * ex.growth, ex.max_a, 0.0, eps))
     };
-    let near_singular = ex.singular_col.is_some() || leading_columns_within(&a64, N - 1, &tol);
+    // Decided only for a refusal that asks: a solution never does, and the
+    // exact test on every input held the smoke run's 20 s to 583 inputs
+    // (1 358 without it; seed 1, the checked-in corpus).
+    let near_singular = || ex.singular_col.is_some() || leading_columns_within(&a64, N - 1, &tol);
     let sol = match result {
         Ok(s) => s,
         Err(SolveError::NonFinite) => panic!("NonFinite for finite input; {ctx}"),
@@ -343,12 +346,15 @@ fn check<T: Scalar, const N: usize, const M: usize>(vals: &[f64]) {
                 rcond <= 4.0 * eps * (1.0 + ex.growth * ex.max_a)
                     || inv_max.max(ex.inv_partial) >= range / 4.0
             };
-            assert!(ok || near_singular, "IllConditioned (estimate {est:e}); {ctx}");
+            assert!(
+                ok || near_singular(),
+                "IllConditioned (estimate {est:e}); {ctx}"
+            );
             return;
         }
         Err(SolveError::Overflow) => {
             let big = ex.max_inter.max(x_max).max(norm_a).max(ex.sub_partial);
-            assert!(big >= range / 4.0 || near_singular, "Overflow; {ctx}");
+            assert!(big >= range / 4.0 || near_singular(), "Overflow; {ctx}");
             return;
         }
         Err(SolveError::Inaccurate { ratio }) => {
@@ -365,10 +371,10 @@ fn check<T: Scalar, const N: usize, const M: usize>(vals: &[f64]) {
                     .filter(|v| *v > 0.0)
                     .fold(f64::INFINITY, f64::min);
             assert!(
-                near_singular
-                    || ex.growth * kappa * n * u >= 1.0 / 64.0
+                ex.growth * kappa * n * u >= 1.0 / 64.0
                     || x_min < min_normal / u
-                    || x_max > range * u,
+                    || x_max > range * u
+                    || near_singular(),
                 "Inaccurate {{ ratio: {ratio} }}; {ctx}"
             );
             return;

@@ -50,7 +50,7 @@
 //! ([`affine_error_bound`]).
 
 mod texel;
-#[cfg(feature = "perspective")]
+#[cfg(feature = "texture")]
 pub(crate) use texel::MaskedTexels;
 pub use texel::{Clamp, Repeat, RepeatPow2, Texture, TextureError, Wrap};
 

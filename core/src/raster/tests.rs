@@ -1173,10 +1173,10 @@ proptest! {
 
 /// A framebuffer that hides [`Target::span_mut`], forcing the run-splitting
 /// path of the depth test.
-#[cfg(any(all(feature = "gouraud", feature = "depth"), feature = "perspective"))]
+#[cfg(any(all(feature = "gouraud", feature = "depth"), feature = "texture"))]
 struct Unfused<'a>(Framebuffer<'a, u8>);
 
-#[cfg(any(all(feature = "gouraud", feature = "depth"), feature = "perspective"))]
+#[cfg(any(all(feature = "gouraud", feature = "depth"), feature = "texture"))]
 impl Target for Unfused<'_> {
     type Color = u8;
     fn clip_rect(&self) -> crate::target::Rect {
@@ -1229,6 +1229,66 @@ proptest! {
         }
         prop_assert_eq!(ca, cb);
         prop_assert_eq!(za, zb);
+    }
+}
+
+#[cfg(feature = "texture")]
+proptest! {
+    /// Affine texturing of a masked (power-of-two) texture writes the same
+    /// pixels into a slice target (the masked run loop) as through
+    /// `fill_with` (`color` per pixel), for texture coordinates up to
+    /// ±30 000 texels (steps that wrap the texture many times per pixel),
+    /// with row padding; and with a depth buffer (runs of passing pixels)
+    /// the same pixels and keys.
+    #[test]
+    fn affine_slice_path_matches(
+        tris in proptest::collection::vec(
+            ((-40i32..360, -40i32..300, -30_000i32..30_000, -30_000i32..30_000, 0u16..=u16::MAX),
+             (-40i32..360, -40i32..300, -30_000i32..30_000, -30_000i32..30_000, 0u16..=u16::MAX),
+             (-40i32..360, -40i32..300, -30_000i32..30_000, -30_000i32..30_000, 0u16..=u16::MAX)), 1..8),
+        small in any::<bool>(),
+    ) {
+        // 8×4 texels in rows of 16, so the stride is not the width.
+        let texels: Vec<u8> = (0..64u32).map(|i| (i * 37 % 251) as u8).collect();
+        let tex = Texture::new(&texels, 8, 4, 16).unwrap();
+        let sh = AffineTexture::<_, RepeatPow2>::new(tex).unwrap();
+        let (w, h) = (40u16, 30u16);
+        let n = w as usize * h as usize;
+        let v = |p: (i32, i32, i32, i32, u16)| {
+            // `small`: within a few texels, where neighbouring pixels
+            // share texels.
+            let (u, t) = if small { (p.2 % 16, p.3 % 16) } else { (p.2, p.3) };
+            ScreenVertex::new(p.0 * 2, p.1 * 2, p.4, [u << 16, t << 16])
+        };
+        let (mut ca, mut cb) = (vec![0u8; n], vec![0u8; n]);
+        {
+            let mut fa = Framebuffer::new(&mut ca, w, h, w as usize).unwrap();
+            let mut fb = Unfused(Framebuffer::new(&mut cb, w, h, w as usize).unwrap());
+            for &(a, b, c) in &tris {
+                let poly = [v(a), v(b), v(c)];
+                fill_polygon(&mut fa, &mut NoDepth, &sh, &poly);
+                fill_polygon(&mut fb, &mut NoDepth, &sh, &poly);
+            }
+        }
+        prop_assert_eq!(&ca, &cb);
+        #[cfg(feature = "depth")]
+        {
+            let (mut ca, mut za) = (vec![0u8; n], vec![u16::MAX; n]);
+            let (mut cb, mut zb) = (vec![0u8; n], vec![u16::MAX; n]);
+            {
+                let mut fa = Framebuffer::new(&mut ca, w, h, w as usize).unwrap();
+                let mut da = DepthBuffer::new(&mut za, w, h, w as usize, 0).unwrap();
+                let mut fb = Unfused(Framebuffer::new(&mut cb, w, h, w as usize).unwrap());
+                let mut db = DepthBuffer::new(&mut zb, w, h, w as usize, 0).unwrap();
+                for &(a, b, c) in &tris {
+                    let poly = [v(a), v(b), v(c)];
+                    fill_polygon(&mut fa, &mut da, &sh, &poly);
+                    fill_polygon(&mut fb, &mut db, &sh, &poly);
+                }
+            }
+            prop_assert_eq!(ca, cb);
+            prop_assert_eq!(za, zb);
+        }
     }
 }
 

@@ -177,7 +177,7 @@ impl<'a, C: Copy> Texture<'a, C> {
 /// A power-of-two texture sampled with masks ([`Texture::masked`]): the
 /// texture shaders' inner loop for [`RepeatPow2`], with no multiply and
 /// no bounds check per texel.
-#[cfg(feature = "perspective")]
+#[cfg(feature = "texture")]
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct MaskedTexels<'a, C> {
     /// At least `2^bits` texels.
@@ -192,7 +192,7 @@ pub(crate) struct MaskedTexels<'a, C> {
     v_mask: u32,
 }
 
-#[cfg(feature = "perspective")]
+#[cfg(feature = "texture")]
 impl<'a, C: Copy> Texture<'a, C> {
     /// The texture as [`MaskedTexels`] when `W` masks ([`Wrap::MASKS`]),
     /// both sides and the stride are powers of two, `stride·height` is at
@@ -215,7 +215,7 @@ impl<'a, C: Copy> Texture<'a, C> {
     }
 }
 
-#[cfg(feature = "perspective")]
+#[cfg(feature = "texture")]
 impl<C: Copy> MaskedTexels<'_, C> {
     /// Fills `run` with the texels at (u, v) = `a`, `a + d`, `a + 2d`, …
     /// in 16.16 texels (stepped modulo 2^32): pixel `j` is
@@ -267,14 +267,83 @@ impl<C: Copy> MaskedTexels<'_, C> {
             }
         }
     }
+
+    /// `run[j] = Texture::sample::<RepeatPow2>(u[j], v[j])` for integer
+    /// texel coordinates (the texels exact perspective mode steps to),
+    /// over the shortest of the three slices.
+    ///
+    /// `stride·height` is `2^bits`, so the low `bits` bits of `v·stride`
+    /// are `(v mod height)·stride` for any `v` (two's complement), and
+    /// `u & (width − 1)` lies below the stride: one OR joins them, and the
+    /// mask by `2^bits − 1` that bounds the index changes nothing.
+    #[cfg(feature = "perspective")]
+    #[inline(always)]
+    pub(crate) fn sample_run(&self, run: &mut [C], u: &[i16], v: &[i16]) {
+        // Two pixels an iteration on ARMv6-M, whose seven low registers
+        // cannot hold the loop: the masks and the texture, reloaded from
+        // the stack, serve both (`bash tests/mcu/run`, ipp persp 54.71 ->
+        // 52.38). One at a time elsewhere.
+        self.sample_run_by::<{ cfg!(all(target_arch = "arm", not(target_has_atomic = "ptr"))) }>(
+            run, u, v,
+        );
+    }
+
+    /// [`Self::sample_run`], two pixels an iteration with `PAIRS` (both
+    /// routes tested on the host).
+    #[cfg(feature = "perspective")]
+    #[inline(always)]
+    pub(crate) fn sample_run_by<const PAIRS: bool>(&self, run: &mut [C], u: &[i16], v: &[i16]) {
+        let n = 1usize << (self.bits & 31);
+        let Some(t) = self.texels.get(..n) else {
+            return;
+        };
+        let last = n - 1;
+        let (rs, um) = (self.row_shift & 31, self.u_mask);
+        // Each coordinate's low 16 bits are enough (both sides divide
+        // 2^16); zero-extended, ARMv6-M loads them with an offset.
+        let texel = |x: i16, y: i16| {
+            let i = (((y as u16 as u32) << rs) | (x as u16 as u32 & um)) as usize;
+            t.get(i & last).copied()
+        };
+        let m = run.len().min(u.len()).min(v.len());
+        let (Some(run), Some(u), Some(v)) = (run.get_mut(..m), u.get(..m), v.get(..m)) else {
+            return;
+        };
+        if PAIRS {
+            let mut pairs = run.chunks_exact_mut(2);
+            for ((p, x), y) in (&mut pairs).zip(u.chunks_exact(2)).zip(v.chunks_exact(2)) {
+                if let ([p0, p1], [x0, x1], [y0, y1]) = (p, x, y) {
+                    if let Some(c) = texel(*x0, *y0) {
+                        *p0 = c;
+                    }
+                    if let Some(c) = texel(*x1, *y1) {
+                        *p1 = c;
+                    }
+                }
+            }
+            if let (Some(p), Some(&x), Some(&y)) =
+                (pairs.into_remainder().first_mut(), u.last(), v.last())
+            {
+                if let Some(c) = texel(x, y) {
+                    *p = c;
+                }
+            }
+        } else {
+            for ((p, &x), &y) in run.iter_mut().zip(u).zip(v) {
+                if let Some(c) = texel(x, y) {
+                    *p = c;
+                }
+            }
+        }
+    }
 }
 
 /// How integer texel coordinates outside the texture map inside.
 pub trait Wrap: Copy + Debug + Default {
     /// Whether [`Self::wrap`] is `i & (n − 1)` for every accepted `n`.
     /// Shaders may then index a power-of-two texture with masks on
-    /// shifted coordinates instead of calling `wrap` (the perspective
-    /// texture shader does). Default `false`; only [`RepeatPow2`] sets it.
+    /// shifted coordinates instead of calling `wrap` (the texture
+    /// shaders do). Default `false`; only [`RepeatPow2`] sets it.
     const MASKS: bool = false;
     /// Whether a texture side of `n` texels is supported.
     fn accepts(n: u16) -> bool;
@@ -332,10 +401,10 @@ impl Wrap for Clamp {
 #[cfg(test)]
 mod tests {
     use super::*;
-    #[cfg(feature = "perspective")]
+    #[cfg(feature = "texture")]
     use proptest::prelude::*;
 
-    #[cfg(feature = "perspective")]
+    #[cfg(feature = "texture")]
     proptest! {
         /// The masked sampler is `sample::<RepeatPow2>` at every pixel of a
         /// run, for any start and step (wrapping ones included) and any
@@ -369,6 +438,43 @@ mod tests {
                 }
             }
             prop_assert!(tex.masked::<Repeat>().is_none());
+        }
+    }
+
+    #[cfg(feature = "perspective")]
+    proptest! {
+        /// The masked sampler of integer texels (exact perspective mode's)
+        /// is `sample::<RepeatPow2>` at every pixel, one or two pixels an
+        /// iteration, for any i16 coordinates and any power-of-two shape
+        /// up to 2^16 texels, with row padding.
+        #[test]
+        fn masked_texels_are_sample(
+            lw in 0u32..9, lh in 0u32..9, pad in 0u32..2,
+            uv in proptest::collection::vec(any::<(i16, i16)>(), 0..40),
+        ) {
+            let (w, h, s) = (1usize << lw, 1usize << lh, 1usize << (lw + pad));
+            let n = s * h;
+            let texels: std::vec::Vec<u16> =
+                (0..n as u32).map(|i| (i.wrapping_mul(40503) % 65521) as u16).collect();
+            let tex = Texture::new(&texels, w as u16, h as u16, s).unwrap();
+            let (u, v): (std::vec::Vec<i16>, std::vec::Vec<i16>) = uv.iter().copied().unzip();
+            match tex.masked::<RepeatPow2>() {
+                None => prop_assert!(n > 1 << 16),
+                Some(m) => {
+                    for pairs in [false, true] {
+                        let mut run = std::vec![0u16; uv.len()];
+                        if pairs {
+                            m.sample_run_by::<true>(&mut run, &u, &v);
+                        } else {
+                            m.sample_run_by::<false>(&mut run, &u, &v);
+                        }
+                        for (j, &got) in run.iter().enumerate() {
+                            let want = tex.sample::<RepeatPow2>(u[j].into(), v[j].into());
+                            prop_assert_eq!(got, want, "pixel {} pairs {}", j, pairs);
+                        }
+                    }
+                }
+            }
         }
     }
 

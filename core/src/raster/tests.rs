@@ -1659,6 +1659,72 @@ proptest! {
     }
 }
 
+/// `persp_div::texels` against the exact texels (i128), and that it
+/// answers wherever `q` is in `[2^8, 2^24]` and both texels lie within
+/// `±(2^15 − 8)`.
+#[cfg(feature = "perspective")]
+fn check_texels(x: i32, y: i32, q: i32) -> Result<(), proptest::test_runner::TestCaseError> {
+    let texel = |x: i32| ((((x as i128) << PERSPECTIVE_Q_BITS) / q as i128) >> 16) as i64;
+    let want = (texel(x), texel(y));
+    match super::persp_div::texels(&[x, y, q]) {
+        Some((u, v)) => prop_assert_eq!((u as i64, v as i64), want, "x {} y {} q {}", x, y, q),
+        None => prop_assert!(
+            !(1 << 8..=1 << 24).contains(&q)
+                || want.0.abs() >= (1 << 15) - 8
+                || want.1.abs() >= (1 << 15) - 8,
+            "no answer for x {} y {} q {}",
+            x,
+            y,
+            q
+        ),
+    }
+    Ok(())
+}
+
+#[cfg(feature = "perspective")]
+proptest! {
+    /// Exact mode's texel divide gives the exact texels (i128 oracle):
+    /// q across its range and beyond it, texels from a few to beyond
+    /// 2^15.
+    #[test]
+    fn texels_are_the_exact_quotients(
+        x in prop_oneof![any::<i32>(), -(1i32 << 23)..(1 << 23), -4096i32..4096],
+        y in prop_oneof![any::<i32>(), -(1i32 << 16)..(1 << 16)],
+        q in prop_oneof![
+            1i32..(1 << 9),
+            (1i32 << 8)..=(1 << 24),
+            ((1i32 << 16) - 16)..((1 << 16) + 16),
+            ((1i32 << 24) - 64)..((1 << 24) + 64),
+            any::<i32>(),
+        ],
+    ) {
+        check_texels(x, y, q)?;
+    }
+
+    /// The same where the sign rule decides: x < 0 with
+    /// `E = x·2^8 mod q` at or next to `⌈q/2^16⌉` (and at 0 and q − 1),
+    /// built with the inverse of 256 modulo an odd q.
+    #[test]
+    fn texels_at_the_sign_rule(
+        q in prop_oneof![
+            ((1i64 << 8) + 1..(1 << 24)).prop_map(|q| q | 1),
+            (1i64..256).prop_map(|k| (k << 16) + 1),
+        ],
+        pick in 0usize..6, g in 0i64..(1 << 15),
+    ) {
+        let ceil = (q + 0xffff) >> 16;
+        let e = [0, 1, ceil - 1, ceil, ceil + 1, q - 1][pick].clamp(0, q - 1);
+        // a·256 ≡ e (mod q) with G = ⌊a·256/q⌋ close to g.
+        let inv = (0..8).fold(1, |acc, _| acc * ((q + 1) / 2) % q);
+        let a0 = (e * inv) % q;
+        let a = a0 + (g * q / 256) / q * q;
+        prop_assume!(a < 1 << 31);
+        prop_assert_eq!((a * 256).rem_euclid(q), e);
+        check_texels(-(a as i32), a as i32, q as i32)?;
+        check_texels(a as i32, -(a as i32), q as i32)?;
+    }
+}
+
 #[cfg(feature = "perspective")]
 proptest! {
     /// Exact mode's stepped runs sample `color`'s texel at every pixel:

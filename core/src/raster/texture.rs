@@ -15,15 +15,16 @@
 //!   computes (u, v) at every N-th pixel of a span (and at its last pixel)
 //!   and steps linearly between them (the classic subdivided affine
 //!   compromise). Each division is a division-free reciprocal and two
-//!   multiplies ([`persp_div`](super::persp_div)), and the step over a full
-//!   run is a shift. The instructions per pixel of exact mode and of
+//!   multiplies ([`persp_div`](super::persp_div)); exact mode's, which
+//!   need only the texel, take a 16-bit reciprocal estimate corrected by
+//!   exact 32-bit remainders. The step over a full run is a shift. The instructions per pixel of exact mode and of
 //!   16-pixel runs on ARMv6-M and ARMv7E-M are in the generated
 //!   `docs/mcu/tables.md` (`ipp persp`, `ipp persp16`).
 
 #[cfg(feature = "perspective")]
 use super::PERSPECTIVE_Q_BITS;
 #[cfg(feature = "perspective")]
-use super::persp_div::{divide, divide_small};
+use super::persp_div::{divide, divide_small, texels};
 use super::shader::{ScalableColor, SpanShader, VARYING_FRAC_BITS};
 use crate::target::Target;
 use crate::texture::{MaskedTexels, Texture, Wrap};
@@ -267,8 +268,12 @@ impl<C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'_, C, W, N> {
     /// of `x = u·q` by `q` (q ≤ 0 taken as 1), clamped to i32.
     #[inline]
     fn texel(&self, v: &[i32; 3]) -> (i32, i32) {
-        // The same values either way; the small divide has no 64-bit
-        // arithmetic after its products.
+        // The same values every way: at texel precision where it can,
+        // else the small divide (no 64-bit arithmetic after its
+        // products), else the 64-bit division.
+        if let Some(t) = texels(v) {
+            return t;
+        }
         match divide_small(v) {
             Some((u, t)) => (u >> VARYING_FRAC_BITS, t >> VARYING_FRAC_BITS),
             None => Self::texel_wide(v),

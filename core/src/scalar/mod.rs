@@ -39,7 +39,7 @@ mod float_math;
 pub(crate) mod predicates;
 mod recip;
 #[cfg(any(test, feature = "perspective"))]
-pub(crate) use recip::recip62_above;
+pub(crate) use recip::{recip46_below, recip62_above};
 pub(crate) use recip::{recip62, recip62_floor};
 
 pub use fixed_point::{Fx, I2F30, I16F16, I20F12, I24F8};

@@ -93,6 +93,21 @@ pub(crate) fn recip62_above(d: u32) -> u64 {
     (recip62_floor(d) + 4).min(1 << 32)
 }
 
+/// `2^46 / d` from below to within 2^−13 of it, for `d` in
+/// `[2^30, 2^31)` (others are clamped): `r·d ≤ 2^46` and
+/// `2^46 − r·d ≤ 2^33`, so `r` is in `[2^15, 2^16)`. The top half of
+/// [`recip62`]'s seed and first Newton step, with neither its 64-bit
+/// second step nor its unit steps: for the perspective texel divide
+/// (`raster::persp_div::texels`), which corrects its estimate by exact
+/// 32-bit remainders. Both bounds are checked for every `d` by
+/// `recip62_exhaustive`.
+#[cfg(any(test, feature = "perspective"))]
+#[inline]
+pub(crate) fn recip46_below(d: u32) -> u32 {
+    let d = d.clamp(1 << 30, (1 << 31) - 1);
+    (first_step(d) >> 16) as u32
+}
+
 /// The seed and first Newton step of [`recip62`] for `d` in
 /// `[2^30, 2^31)`: at or below `2^62 / d`, within 2^−14 of it.
 #[inline(always)]

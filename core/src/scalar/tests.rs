@@ -425,7 +425,7 @@ fn from_f32_exhaustive() {
 #[test]
 #[ignore = "2^30 divisors: about 25 s in the test profile; CI runs it with --ignored"]
 fn recip62_exhaustive() {
-    use super::{recip62, recip62_above, recip62_floor};
+    use super::{recip46_below, recip62, recip62_above, recip62_floor};
     for d in (1u32 << 30)..(1u32 << 31) {
         let exact = (1u128 << 62).div_ceil(d as u128) as u64;
         assert_eq!(recip62(d), exact, "d = {d}");
@@ -435,6 +435,31 @@ fn recip62_exhaustive() {
         assert!(x <= floor && floor - x < 4, "d = {d}: {x} against {floor}");
         // The raster's one-step corrections rest on R ≤ r ≤ R + 4.
         assert!(recip62_above_holds(d, recip62_above(d)), "d = {d}");
+        // The perspective texel divide's estimate rests on this bound.
+        assert!(recip46_holds(d, recip46_below(d)), "d = {d}");
+    }
+}
+
+/// `r·d ≤ 2^46` and `2^46 − r·d ≤ 2^33` (r within 2^−13 below `2^46/d`),
+/// in exact integers.
+fn recip46_holds(d: u32, r: u32) -> bool {
+    let p = d as u64 * r as u64;
+    p <= 1 << 46 && (1u64 << 46) - p <= 1 << 33
+}
+
+#[test]
+fn recip46_is_below_within_2_13() {
+    use super::recip46_below;
+    // Both ends, every seed interval's ends and a stride through the rest
+    // (all 2^30 divisors: `recip62_exhaustive`).
+    let mut ds: Vec<u32> = vec![1 << 30, (1 << 31) - 1];
+    for i in 0..256u32 {
+        let b = (256 + i) << 22;
+        ds.extend([b.wrapping_sub(1), b, b + 1]);
+    }
+    ds.extend((0..200_000u32).map(|k| (1 << 30) + k.wrapping_mul(5_368_709) % (1 << 30)));
+    for d in ds.into_iter().filter(|d| (1 << 30..1 << 31).contains(d)) {
+        assert!(recip46_holds(d, recip46_below(d)), "d = {d}");
     }
 }
 

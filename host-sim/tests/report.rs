@@ -102,3 +102,50 @@ fn tiny_report_writes_parseable_tables_and_plots() {
 
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The committed report's Cortex-M columns are what the current generated
+/// tables (`docs/mcu/kernels.md`, `docs/mcu/tables.md`, compiled into the
+/// simulator) give: the report is generated too, and `tests/mcu/run`
+/// changing those tables must be followed by rerunning it. (Host times
+/// and errors depend on the machine and the sample size, so only these
+/// columns are compared.)
+#[test]
+fn committed_report_has_the_current_cortex_m_figures() {
+    let committed = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../docs/report/accuracy.md"
+    ))
+    .unwrap();
+    // Its own directory: `temp_dir()` clears the other test's.
+    let dir = std::env::temp_dir().join(format!("sightline-sim-report-mcu-{}", std::process::id()));
+    let mut out = Vec::new();
+    sightline_sim::run(
+        [
+            "sightline-sim",
+            "report",
+            "--tiny",
+            "--out",
+            dir.to_str().unwrap(),
+        ],
+        &mut out,
+    )
+    .unwrap();
+    let fresh = std::fs::read_to_string(dir.join("accuracy.md")).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    let mcu = |md: &str| -> Vec<(String, String, [String; 2])> {
+        parse_tables(md)
+            .unwrap()
+            .into_iter()
+            .map(|r| (r.table, r.repr, r.mcu))
+            .collect()
+    };
+    let (old, new) = (mcu(&committed), mcu(&fresh));
+    assert_eq!(old.len(), new.len(), "the report's rows changed");
+    for (o, n) in old.iter().zip(&new) {
+        assert_eq!(
+            o, n,
+            "docs/report/accuracy.md is stale; rerun \
+             `cargo run --release -p sightline-sim -- report --out docs/report`"
+        );
+    }
+}

@@ -96,6 +96,9 @@ pub struct ParsedRow {
     pub err: Option<(f64, f64)>,
     /// Median, q1, q3, min, max ns/op.
     pub time: [f64; 5],
+    /// The Cortex-M cells as written (thumbv6m, thumbv7em-hf): a figure
+    /// with its kernel, or the reason for a gap.
+    pub mcu: [String; 2],
 }
 
 /// Parses every table row of a rendered report.
@@ -138,6 +141,7 @@ pub fn parse_tables(md: &str) -> Result<Vec<ParsedRow>, String> {
             repr: cells[0].to_owned(),
             err,
             time: [f(cells[3])?, q1, q3, lo, hi],
+            mcu: [cells[6].to_owned(), cells[7].to_owned()],
         });
     }
     Ok(out)

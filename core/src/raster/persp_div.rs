@@ -51,8 +51,28 @@ pub(crate) fn divide(v: &[i32; 3]) -> (i64, i64) {
 /// [`divide`]'s values (as i32) when each magnitude is below
 /// [`EXACT_BELOW`] before the correction step, else `None`. The
 /// subdivided texture shader's fast path, which then steps in i32.
+///
+/// On ARMv6-M, in 32-bit arithmetic where it can ([`quotients`]: `q` in
+/// `[2^8, 2^24]`, quotients below `2^29 − 2^16` in magnitude); elsewhere,
+/// and outside that range, by [`recip62_above`]'s reciprocal and 64-bit
+/// products, which cores with a 32×32→64 multiply run faster. The same
+/// values either way (`bash tests/mcu/run`, ARMv6-M: ipp persp16
+/// 41.31 -> 34.19, persp16-depth 47.93 -> 40.81; on the Cortex-M4 the
+/// 32-bit route cost 22.50 -> 22.94 and 30.00 -> 30.44).
 #[inline]
 pub(crate) fn divide_small(v: &[i32; 3]) -> Option<(i32, i32)> {
+    if cfg!(all(target_arch = "arm", not(target_has_atomic = "ptr"))) {
+        quotients(v).or_else(|| divide_small_wide(v))
+    } else {
+        divide_small_wide(v)
+    }
+}
+
+/// [`divide_small`] by [`recip62_above`]: a reciprocal good to 32 bits
+/// and 64-bit products, for any `q`. (Exact mode calls it where
+/// [`texels`] has no answer, and then [`quotients`] has none either.)
+#[inline]
+pub(crate) fn divide_small_wide(v: &[i32; 3]) -> Option<(i32, i32)> {
     let (q, estimate) = estimator(v[2]);
     let one = |x: i32| -> Option<i32> {
         let a = x.unsigned_abs();
@@ -94,35 +114,107 @@ pub(crate) fn divide_small(v: &[i32; 3]) -> Option<(i32, i32)> {
 /// everywhere.
 #[inline]
 pub(crate) fn texels(v: &[i32; 3]) -> Option<(i32, i32)> {
-    let q = v[2];
-    if !(1 << 8..=1 << PERSPECTIVE_Q_BITS).contains(&q) {
-        return None;
-    }
-    let q = q as u32;
-    // q·2^s in [2^30, 2^31), so s is in [6, 22].
-    let s = crate::scalar::normalize_shift(q);
-    let r = recip46_below(q << s);
-    // G = a·2^8/q = a·2^(8+s)/(q·2^s) ≈ a·r/2^(38−s).
-    let sh = 22 - s;
-    let ceil = (q + 0xffff) >> 16;
+    let d = Short::new(v[2])?;
+    let ceil = (d.q + 0xffff) >> 16;
     let one = |x: i32| -> Option<i32> {
-        let a = x.unsigned_abs();
-        // ⌊a·r/2^16⌋ from a's halves: each product is below 2^32, the
-        // sum below 2^31 + 2^16.
-        let p = (a >> 16) * r + (((a & 0xffff) * r) >> 16);
-        let mut g = p >> sh;
-        if g >= 1 << 15 {
-            return None;
-        }
-        let mut e = (a << 8).wrapping_sub(g.wrapping_mul(q));
-        while e >= q {
-            g += 1;
-            e -= q;
-        }
+        let (g, e) = d.floor(x.unsigned_abs(), 1 << 15)?;
         let g = g as i32;
         Some(if x < 0 { -g - i32::from(e >= ceil) } else { g })
     };
     Some((one(v[0])?, one(v[1])?))
+}
+
+/// [`divide`]'s quotients `T = trunc(x·2^24/q)` in 32-bit arithmetic:
+/// `Some` when `q` is in `[2^8, 2^24]` and each `|T|` is below
+/// `2^29 − 2^16`, where [`divide`] is exact too, else `None`.
+///
+/// `|T| = G·2^16 + ⌊E·2^16/q⌋` for `G = ⌊|x|·2^8/q⌋` and its remainder
+/// `E` (see [`texels`]); the fraction is estimated from the same
+/// reciprocal, never above it and at most 10 below it (`f·2^−13` plus
+/// two truncations, for `f < 2^16`), so `E·2^16 − f̂·q` lies in
+/// `[0, 11q)`, below 2^28, and is exact in wrapping 32-bit arithmetic:
+/// it steps the estimate up to the fraction. Checked against i128
+/// quotients by `quotients_are_the_exact_quotients`.
+#[inline]
+pub(crate) fn quotients(v: &[i32; 3]) -> Option<(i32, i32)> {
+    const G_MAX: u32 = (1 << (29 - 16)) - 1;
+    let d = Short::new(v[2])?;
+    let one = |x: i32| -> Option<i32> {
+        let (g, e) = d.floor(x.unsigned_abs(), G_MAX)?;
+        if g >= G_MAX {
+            return None;
+        }
+        let t = ((g << 16) | d.fraction(e)) as i32;
+        Some(if x < 0 { -t } else { t })
+    };
+    Some((one(v[0])?, one(v[1])?))
+}
+
+/// A divisor `q` in `[2^8, 2^24]` with the reciprocal estimate that
+/// [`texels`] and [`quotients`] share: `r` = [`recip46_below`]`(q·2^s)`
+/// for `q·2^s` in `[2^30, 2^31)` (so `s` is in `[6, 22]`), at or below
+/// `2^46/(q·2^s)` and within 2^−13 of it.
+#[derive(Clone, Copy)]
+struct Short {
+    q: u32,
+    r: u32,
+    /// `22 − s`, in `[0, 16]`.
+    sh: u32,
+}
+
+impl Short {
+    #[inline(always)]
+    fn new(q: i32) -> Option<Self> {
+        if !(1 << 8..=1 << PERSPECTIVE_Q_BITS).contains(&q) {
+            return None;
+        }
+        let q = q as u32;
+        let s = crate::scalar::normalize_shift(q);
+        Some(Self {
+            q,
+            r: recip46_below(q << s),
+            sh: 22 - s,
+        })
+    }
+
+    /// `G = ⌊a·2^8/q⌋` and `E = a·2^8 − G·q` when the estimate of `G` is
+    /// below `limit` (at most 2^15), else `None`. `G ≈ a·2^(8+s)/(q·2^s)
+    /// ≈ a·r/2^(38−s)`: the estimate `g = ⌊⌊a·r/2^16⌋ / 2^(22−s)⌋` is never
+    /// above `G`, and below 2^15 at most 7 below it, so `a·2^8 − g·q` lies
+    /// in `[0, 8q)`, below 2^27: exact in wrapping 32-bit arithmetic.
+    #[inline(always)]
+    fn floor(&self, a: u32, limit: u32) -> Option<(u32, u32)> {
+        // ⌊a·r/2^16⌋ from a's halves: each product is below 2^32, the sum
+        // below 2^31 + 2^16.
+        let p = (a >> 16) * self.r + (((a & 0xffff) * self.r) >> 16);
+        let mut g = p >> self.sh;
+        if g >= limit {
+            return None;
+        }
+        let mut e = (a << 8).wrapping_sub(g.wrapping_mul(self.q));
+        while e >= self.q {
+            g += 1;
+            e -= self.q;
+        }
+        Some((g, e))
+    }
+
+    /// `⌊e·2^16/q⌋` for `e` in `[0, q)`: estimated as
+    /// `⌊⌊e·r/2^8⌋ / 2^(22−s)⌋` (at most 10 below, never above), then
+    /// stepped up by the exact remainder `e·2^16 − f·q` (below 2^28).
+    #[inline(always)]
+    fn fraction(&self, e: u32) -> u32 {
+        // ⌊e·r/2^8⌋ from e's halves (e < 2^24): (e >> 16)·r < 2^24, and
+        // the sum is at most e·r/2^8 < 2^32.
+        let p = (((e >> 16) * self.r) << 8) + (((e & 0xffff) * self.r) >> 8);
+        let mut f = p >> self.sh;
+        let mut rest = (e << 16).wrapping_sub(f.wrapping_mul(self.q));
+        while rest >= self.q {
+            f += 1;
+            rest -= self.q;
+        }
+        f
+    }
 }
 
 /// `q = max(q, 1)` and the estimate `a ↦ e = a·r >> (38 − s)` of the

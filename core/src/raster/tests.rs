@@ -1681,6 +1681,93 @@ fn check_texels(x: i32, y: i32, q: i32) -> Result<(), proptest::test_runner::Tes
     Ok(())
 }
 
+/// `persp_div::quotients` against the exact truncated quotients (i128),
+/// and that it answers wherever `q` is in `[2^8, 2^24]` and both lie
+/// within `±(2^29 − 2^17)`, and never beyond `±(2^29 − 2^16)` (where
+/// `divide` is exact too).
+#[cfg(feature = "perspective")]
+fn check_quotients(x: i32, y: i32, q: i32) -> Result<(), proptest::test_runner::TestCaseError> {
+    use super::persp_div::quotients;
+    let exact = |x: i32| (((x as i128) << PERSPECTIVE_Q_BITS) / q as i128) as i64;
+    let want = (exact(x), exact(y));
+    let limit = (1i64 << 29) - (1 << 17);
+    match quotients(&[x, y, q]) {
+        Some((u, v)) => {
+            prop_assert_eq!((u as i64, v as i64), want, "x {} y {} q {}", x, y, q);
+            let most = (1i64 << 29) - (1 << 16);
+            prop_assert!(
+                want.0.abs() < most && want.1.abs() < most,
+                "x {} y {} q {}",
+                x,
+                y,
+                q
+            );
+        }
+        None => prop_assert!(
+            !(1 << 8..=1 << 24).contains(&q) || want.0.abs() >= limit || want.1.abs() >= limit,
+            "no answer for x {} y {} q {}",
+            x,
+            y,
+            q
+        ),
+    }
+    Ok(())
+}
+
+#[cfg(feature = "perspective")]
+proptest! {
+    /// The 32-bit divide gives the exact truncated quotients (i128
+    /// oracle): q across its range and beyond it, quotients from a
+    /// fraction of a texel to beyond 2^13 texels, fractions anywhere.
+    #[test]
+    fn quotients_are_the_exact_quotients(
+        x in prop_oneof![any::<i32>(), -(1i32 << 21)..(1 << 21), -4096i32..4096, -8i32..8],
+        y in prop_oneof![any::<i32>(), -(1i32 << 13)..(1 << 13)],
+        q in prop_oneof![
+            1i32..(1 << 9),
+            (1i32 << 8)..=(1 << 24),
+            ((1i32 << 16) - 16)..((1 << 16) + 16),
+            ((1i32 << 24) - 64)..((1 << 24) + 64),
+            any::<i32>(),
+        ],
+    ) {
+        check_quotients(x, y, q)?;
+    }
+
+    /// The same where the fraction is just below a unit: `x·2^24 mod q`
+    /// in the last 2^k of q, found from the inverse of 2^24 modulo an odd
+    /// q, and quotients near the 2^29 − 2^16 limit.
+    #[test]
+    fn quotients_near_a_unit(
+        q in ((1i64 << 8) + 1..(1 << 24)).prop_map(|q| q | 1),
+        back in 1i64..1024, t in 0i64..(1 << 29),
+    ) {
+        // 2^24·a ≡ q − back (mod q): the fraction's remainder is one
+        // `back` short of a unit.
+        let r = (q - back % q).rem_euclid(q);
+        let inv2 = (q + 1) / 2;
+        let inv = (0..24).fold(1, |acc, _| acc * inv2 % q);
+        let a0 = (r * inv) % q;
+        // Near the quotient t: a ≈ t·q/2^24, moved to the residue a0.
+        let a = ((t * q) >> 24) / q * q + a0;
+        prop_assume!(a < 1 << 31);
+        prop_assert_eq!((a << 24).rem_euclid(q), r);
+        check_quotients(a as i32, -(a as i32), q as i32)?;
+    }
+
+    /// The same at the edge of its range: quotients within 2^17 units of
+    /// `2^29 − 2^16`, either sign.
+    #[test]
+    fn quotients_at_their_limit(
+        q in (1i64 << 8)..=(1 << 24), k in -(1i64 << 17)..(1 << 17), neg in any::<bool>(),
+    ) {
+        let a = (((1i64 << 29) - (1 << 16) + k) * q) >> 24;
+        prop_assume!(a < 1 << 31);
+        let x = if neg { -a } else { a } as i32;
+        check_quotients(x, 0, q as i32)?;
+    }
+}
+
 #[cfg(feature = "perspective")]
 proptest! {
     /// Exact mode's texel divide gives the exact texels (i128 oracle):

@@ -24,7 +24,7 @@
 #[cfg(feature = "perspective")]
 use super::PERSPECTIVE_Q_BITS;
 #[cfg(feature = "perspective")]
-use super::persp_div::{divide, divide_small, texels};
+use super::persp_div::{divide, divide_small, divide_small_wide, texels};
 use super::shader::{ScalableColor, SpanShader, VARYING_FRAC_BITS};
 use crate::target::Target;
 use crate::texture::{MaskedTexels, Texture, Wrap};
@@ -274,7 +274,7 @@ impl<C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'_, C, W, N> {
         if let Some(t) = texels(v) {
             return t;
         }
-        match divide_small(v) {
+        match divide_small_wide(v) {
             Some((u, t)) => (u >> VARYING_FRAC_BITS, t >> VARYING_FRAC_BITS),
             None => Self::texel_wide(v),
         }

@@ -10,9 +10,9 @@ fn temp_dir() -> PathBuf {
     d
 }
 
-#[test]
-fn tiny_report_writes_parseable_tables_and_plots() {
-    let dir = temp_dir();
+/// Runs `sightline-sim report --tiny --out DIR` and returns its
+/// `accuracy.md`.
+fn tiny_report(dir: &std::path::Path) -> String {
     let mut out = Vec::new();
     sightline_sim::run(
         [
@@ -25,7 +25,13 @@ fn tiny_report_writes_parseable_tables_and_plots() {
         &mut out,
     )
     .unwrap();
-    let md = std::fs::read_to_string(dir.join("accuracy.md")).unwrap();
+    std::fs::read_to_string(dir.join("accuracy.md")).unwrap()
+}
+
+#[test]
+fn tiny_report_writes_parseable_tables_and_plots() {
+    let dir = temp_dir();
+    let md = tiny_report(&dir);
     assert!(md.contains("## Method"), "method section missing");
 
     let rows = parse_tables(&md).unwrap();
@@ -118,19 +124,7 @@ fn committed_report_has_the_current_cortex_m_figures() {
     .unwrap();
     // Its own directory: `temp_dir()` clears the other test's.
     let dir = std::env::temp_dir().join(format!("sightline-sim-report-mcu-{}", std::process::id()));
-    let mut out = Vec::new();
-    sightline_sim::run(
-        [
-            "sightline-sim",
-            "report",
-            "--tiny",
-            "--out",
-            dir.to_str().unwrap(),
-        ],
-        &mut out,
-    )
-    .unwrap();
-    let fresh = std::fs::read_to_string(dir.join("accuracy.md")).unwrap();
+    let fresh = tiny_report(&dir);
     let _ = std::fs::remove_dir_all(&dir);
     let mcu = |md: &str| -> Vec<(String, String, [String; 2])> {
         parse_tables(md)

@@ -1202,16 +1202,8 @@ proptest! {
              (-40i32..360, -40i32..300, 0u16..=u16::MAX, 0i32..256)), 1..12),
         gouraud in any::<bool>(),
     ) {
-        let (w, h) = (40u16, 30u16);
-        let n = w as usize * h as usize;
         let ramp = ramp_u8();
-        let (mut ca, mut za) = (vec![0u8; n], vec![u16::MAX; n]);
-        let (mut cb, mut zb) = (vec![0u8; n], vec![u16::MAX; n]);
-        {
-            let mut fa = Framebuffer::new(&mut ca, w, h, w as usize).unwrap();
-            let mut da = DepthBuffer::new(&mut za, w, h, w as usize, 0).unwrap();
-            let mut fb = Unfused(Framebuffer::new(&mut cb, w, h, w as usize).unwrap());
-            let mut db = DepthBuffer::new(&mut zb, w, h, w as usize, 0).unwrap();
+        let [fused, runs] = fused_and_unfused(|fa, da, fb, db| {
             for (k, &(a, b, c)) in tris.iter().enumerate() {
                 let v = |p: (i32, i32, u16, i32)| {
                     ScreenVertex::new(p.0 * 2, p.1 * 2, p.2, [p.3 << 16])
@@ -1219,17 +1211,41 @@ proptest! {
                 let poly = [v(a), v(b), v(c)];
                 if gouraud {
                     let g = Gouraud::new(&ramp);
-                    fill_polygon(&mut fa, &mut da, &g, &poly);
-                    fill_polygon(&mut fb, &mut db, &g, &poly);
+                    fill_polygon(fa, da, &g, &poly);
+                    fill_polygon(fb, db, &g, &poly);
                 } else {
-                    fill_polygon(&mut fa, &mut da, &Flat(k as u8 + 1), &poly);
-                    fill_polygon(&mut fb, &mut db, &Flat(k as u8 + 1), &poly);
+                    fill_polygon(fa, da, &Flat(k as u8 + 1), &poly);
+                    fill_polygon(fb, db, &Flat(k as u8 + 1), &poly);
                 }
             }
-        }
-        prop_assert_eq!(ca, cb);
-        prop_assert_eq!(za, zb);
+        });
+        prop_assert_eq!(fused, runs);
     }
+}
+
+/// Colors and keys of a 40×30 slice framebuffer and of an [`Unfused`] one,
+/// each with its own depth buffer, after `draw` has drawn into both.
+#[cfg(all(feature = "depth", any(feature = "gouraud", feature = "texture")))]
+fn fused_and_unfused(
+    draw: impl FnOnce(
+        &mut Framebuffer<'_, u8>,
+        &mut DepthBuffer<'_>,
+        &mut Unfused<'_>,
+        &mut DepthBuffer<'_>,
+    ),
+) -> [(Vec<u8>, Vec<u16>); 2] {
+    let (w, h) = (40u16, 30u16);
+    let n = w as usize * h as usize;
+    let (mut ca, mut za) = (vec![0u8; n], vec![u16::MAX; n]);
+    let (mut cb, mut zb) = (vec![0u8; n], vec![u16::MAX; n]);
+    {
+        let mut fa = Framebuffer::new(&mut ca, w, h, w as usize).unwrap();
+        let mut da = DepthBuffer::new(&mut za, w, h, w as usize, 0).unwrap();
+        let mut fb = Unfused(Framebuffer::new(&mut cb, w, h, w as usize).unwrap());
+        let mut db = DepthBuffer::new(&mut zb, w, h, w as usize, 0).unwrap();
+        draw(&mut fa, &mut da, &mut fb, &mut db);
+    }
+    [(ca, za), (cb, zb)]
 }
 
 #[cfg(feature = "texture")]
@@ -1273,21 +1289,14 @@ proptest! {
         prop_assert_eq!(&ca, &cb);
         #[cfg(feature = "depth")]
         {
-            let (mut ca, mut za) = (vec![0u8; n], vec![u16::MAX; n]);
-            let (mut cb, mut zb) = (vec![0u8; n], vec![u16::MAX; n]);
-            {
-                let mut fa = Framebuffer::new(&mut ca, w, h, w as usize).unwrap();
-                let mut da = DepthBuffer::new(&mut za, w, h, w as usize, 0).unwrap();
-                let mut fb = Unfused(Framebuffer::new(&mut cb, w, h, w as usize).unwrap());
-                let mut db = DepthBuffer::new(&mut zb, w, h, w as usize, 0).unwrap();
+            let [fused, runs] = fused_and_unfused(|fa, da, fb, db| {
                 for &(a, b, c) in &tris {
                     let poly = [v(a), v(b), v(c)];
-                    fill_polygon(&mut fa, &mut da, &sh, &poly);
-                    fill_polygon(&mut fb, &mut db, &sh, &poly);
+                    fill_polygon(fa, da, &sh, &poly);
+                    fill_polygon(fb, db, &sh, &poly);
                 }
-            }
-            prop_assert_eq!(ca, cb);
-            prop_assert_eq!(za, zb);
+            });
+            prop_assert_eq!(fused, runs);
         }
     }
 }
@@ -1681,6 +1690,19 @@ fn check_texels(x: i32, y: i32, q: i32) -> Result<(), proptest::test_runner::Tes
     Ok(())
 }
 
+/// Divisors q for the 32-bit divides: below, across and above their range
+/// `[2^8, 2^24]`, its ends and 2^16, and any i32.
+#[cfg(feature = "perspective")]
+fn short_divisors() -> impl Strategy<Value = i32> {
+    prop_oneof![
+        1i32..(1 << 9),
+        (1i32 << 8)..=(1 << 24),
+        ((1i32 << 16) - 16)..((1 << 16) + 16),
+        ((1i32 << 24) - 64)..((1 << 24) + 64),
+        any::<i32>(),
+    ]
+}
+
 /// `persp_div::quotients` against the exact truncated quotients (i128),
 /// and that it answers wherever `q` is in `[2^8, 2^24]` and both lie
 /// within `±(2^29 − 2^17)`, and never beyond `±(2^29 − 2^16)` (where
@@ -1723,13 +1745,7 @@ proptest! {
     fn quotients_are_the_exact_quotients(
         x in prop_oneof![any::<i32>(), -(1i32 << 21)..(1 << 21), -4096i32..4096, -8i32..8],
         y in prop_oneof![any::<i32>(), -(1i32 << 13)..(1 << 13)],
-        q in prop_oneof![
-            1i32..(1 << 9),
-            (1i32 << 8)..=(1 << 24),
-            ((1i32 << 16) - 16)..((1 << 16) + 16),
-            ((1i32 << 24) - 64)..((1 << 24) + 64),
-            any::<i32>(),
-        ],
+        q in short_divisors(),
     ) {
         check_quotients(x, y, q)?;
     }
@@ -1777,13 +1793,7 @@ proptest! {
     fn texels_are_the_exact_quotients(
         x in prop_oneof![any::<i32>(), -(1i32 << 23)..(1 << 23), -4096i32..4096],
         y in prop_oneof![any::<i32>(), -(1i32 << 16)..(1 << 16)],
-        q in prop_oneof![
-            1i32..(1 << 9),
-            (1i32 << 8)..=(1 << 24),
-            ((1i32 << 16) - 16)..((1 << 16) + 16),
-            ((1i32 << 24) - 64)..((1 << 24) + 64),
-            any::<i32>(),
-        ],
+        q in short_divisors(),
     ) {
         check_texels(x, y, q)?;
     }

@@ -447,18 +447,24 @@ fn recip46_holds(d: u32, r: u32) -> bool {
     p <= 1 << 46 && (1u64 << 46) - p <= 1 << 33
 }
 
-#[test]
-fn recip46_is_below_within_2_13() {
-    use super::recip46_below;
-    // Both ends, every seed interval's ends and a stride through the rest
-    // (all 2^30 divisors: `recip62_exhaustive`).
+/// Normalized divisors for the sampled reciprocal tests: both ends, every
+/// seed interval's ends and a stride through the rest (all 2^30 divisors:
+/// `recip62_exhaustive`).
+fn sample_divisors() -> Vec<u32> {
     let mut ds: Vec<u32> = vec![1 << 30, (1 << 31) - 1];
     for i in 0..256u32 {
         let b = (256 + i) << 22;
         ds.extend([b.wrapping_sub(1), b, b + 1]);
     }
     ds.extend((0..200_000u32).map(|k| (1 << 30) + k.wrapping_mul(5_368_709) % (1 << 30)));
-    for d in ds.into_iter().filter(|d| (1 << 30..1 << 31).contains(d)) {
+    ds.retain(|d| (1 << 30..1 << 31).contains(d));
+    ds
+}
+
+#[test]
+fn recip46_is_below_within_2_13() {
+    use super::recip46_below;
+    for d in sample_divisors() {
         assert!(recip46_holds(d, recip46_below(d)), "d = {d}");
     }
 }
@@ -472,15 +478,7 @@ fn recip62_above_holds(d: u32, r: u64) -> bool {
 #[test]
 fn recip62_above_is_above_by_at_most_four() {
     use super::recip62_above;
-    // Both ends, every seed interval's ends and a stride through the rest
-    // (all 2^30 divisors: `recip62_exhaustive`).
-    let mut ds: Vec<u32> = vec![1 << 30, (1 << 31) - 1];
-    for i in 0..256u32 {
-        let b = (256 + i) << 22;
-        ds.extend([b.wrapping_sub(1), b, b + 1]);
-    }
-    ds.extend((0..200_000u32).map(|k| (1 << 30) + k.wrapping_mul(5_368_709) % (1 << 30)));
-    for d in ds.into_iter().filter(|d| (1 << 30..1 << 31).contains(d)) {
+    for d in sample_divisors() {
         assert!(recip62_above_holds(d, recip62_above(d)), "d = {d}");
     }
 }

@@ -105,7 +105,7 @@ pub(crate) fn divide_small_wide(v: &[i32; 3]) -> Option<(i32, i32)> {
 /// `texels_at_the_sign_rule`.
 ///
 /// On ARMv6-M that is a table load and six 32-bit multiplies where
-/// [`divide_small`] forms 64-bit products and a second Newton step
+/// [`divide_small_wide`] forms 64-bit products and a second Newton step
 /// (`bash tests/mcu/run`, I16F16 corridor scene frame: ARMv6-M
 /// 6 226 884 -> 5 851 281 instructions, Cortex-M4 4 618 491 ->
 /// 4 565 987; 332 bytes in the v6m texture firmware). On the x86-64

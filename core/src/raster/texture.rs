@@ -14,12 +14,14 @@
 //!   coordinate between them. With `N = 8`, `16` or `32` it
 //!   computes (u, v) at every N-th pixel of a span (and at its last pixel)
 //!   and steps linearly between them (the classic subdivided affine
-//!   compromise). Each division is a division-free reciprocal and two
-//!   multiplies ([`persp_div`](super::persp_div)); exact mode's, which
-//!   need only the texel, take a 16-bit reciprocal estimate corrected by
-//!   exact 32-bit remainders. The step over a full run is a shift. The instructions per pixel of exact mode and of
-//!   16-pixel runs on ARMv6-M and ARMv7E-M are in the generated
-//!   `docs/mcu/tables.md` (`ipp persp`, `ipp persp16`).
+//!   compromise). Each division is division-free
+//!   ([`persp_div`](super::persp_div)): a reciprocal estimate, products,
+//!   and a correction by the exact remainder, in 32-bit arithmetic where
+//!   the quotients are small (exact mode's texels everywhere, the run
+//!   ends on ARMv6-M). The step over a full run is a shift. The
+//!   instructions per pixel of exact mode and of 16-pixel runs on ARMv6-M
+//!   and ARMv7E-M are in the generated `docs/mcu/tables.md`
+//!   (`ipp persp`, `ipp persp16`).
 
 #[cfg(feature = "perspective")]
 use super::PERSPECTIVE_Q_BITS;
@@ -269,8 +271,8 @@ impl<C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'_, C, W, N> {
     #[inline]
     fn texel(&self, v: &[i32; 3]) -> (i32, i32) {
         // The same values every way: at texel precision where it can,
-        // else the small divide (no 64-bit arithmetic after its
-        // products), else the 64-bit division.
+        // else the small divide by 64-bit products, else the 64-bit
+        // division.
         if let Some(t) = texels(v) {
             return t;
         }

@@ -53,6 +53,8 @@ mod texel;
 #[cfg(feature = "texture")]
 pub(crate) use texel::MaskedTexels;
 pub use texel::{Clamp, Repeat, RepeatPow2, Texture, TextureError, Wrap};
+#[cfg(feature = "perspective")]
+pub(crate) use texel::{PAIRS, sample_coords};
 
 #[cfg(feature = "texture")]
 mod mapping;

@@ -58,7 +58,8 @@ pub(crate) fn divide(v: &[i32; 3]) -> (i64, i64) {
 /// products, which cores with a 32×32→64 multiply run faster. The same
 /// values either way (`bash tests/mcu/run`, ARMv6-M: ipp persp16
 /// 41.31 -> 34.19, persp16-depth 47.93 -> 40.81; on the Cortex-M4 the
-/// 32-bit route cost 22.50 -> 22.94 and 30.00 -> 30.44).
+/// 32-bit route cost 22.50 -> 22.94 and 30.00 -> 30.44, counted on the
+/// tests/mcu firmware's `fill` runs by `../shared/tools/qemu-prof`).
 #[inline]
 pub(crate) fn divide_small(v: &[i32; 3]) -> Option<(i32, i32)> {
     if cfg!(all(target_arch = "arm", not(target_has_atomic = "ptr"))) {
@@ -134,7 +135,8 @@ pub(crate) fn texels(v: &[i32; 3]) -> Option<(i32, i32)> {
 /// two truncations, for `f < 2^16`), so `E·2^16 − f̂·q` lies in
 /// `[0, 11q)`, below 2^28, and is exact in wrapping 32-bit arithmetic:
 /// it steps the estimate up to the fraction. Checked against i128
-/// quotients by `quotients_are_the_exact_quotients`.
+/// quotients by `quotients_are_the_exact_quotients`,
+/// `quotients_near_a_unit` and `quotients_at_their_limit`.
 #[inline]
 pub(crate) fn quotients(v: &[i32; 3]) -> Option<(i32, i32)> {
     const G_MAX: u32 = (1 << (29 - 16)) - 1;

@@ -64,15 +64,33 @@ pub trait SpanShader<const VARYINGS: usize> {
         start: [i32; VARYINGS],
         step: [i32; VARYINGS],
     ) {
-        let mut v = start;
-        target.fill_with(y, x, len, || {
-            let c = self.color(&v);
-            for (vk, sk) in v.iter_mut().zip(&step) {
-                *vk = vk.wrapping_add(*sk);
-            }
-            c
-        });
+        shade_per_pixel(self, target, (y, x, len), start, step);
     }
+}
+
+/// [`SpanShader::shade_run`]'s default: [`SpanShader::color`] at every
+/// pixel, the varyings stepped (wrapping) from `start` by `step`. Also the
+/// fallback of the shaders that override it, for targets that lend no
+/// slice.
+#[inline(always)]
+pub(crate) fn shade_per_pixel<Sh, T, const VARYINGS: usize>(
+    shader: &Sh,
+    target: &mut T,
+    (y, x, len): (i32, i32, u32),
+    start: [i32; VARYINGS],
+    step: [i32; VARYINGS],
+) where
+    Sh: SpanShader<VARYINGS> + ?Sized,
+    T: Target<Color = Sh::Color>,
+{
+    let mut v = start;
+    target.fill_with(y, x, len, || {
+        let c = shader.color(&v);
+        for (vk, sk) in v.iter_mut().zip(&step) {
+            *vk = vk.wrapping_add(*sk);
+        }
+        c
+    });
 }
 
 /// One color for the whole polygon. Ignores any varyings, so it works

@@ -1871,8 +1871,9 @@ proptest! {
         exact_runs_match_color([x0, -x0, q0], [dx, dx, 0], len)?;
     }
 
-    /// ARMv6-M's paired sampling pass of exact mode writes what sampling
-    /// each pixel gives, for runs of every length up to 70 (odd ones end
+    /// Exact mode's unmasked sampling pass, one and two pixels an iteration
+    /// (the second is ARMv6-M's), writes what sampling each pixel gives,
+    /// for runs of every length up to 70 (odd ones end
     /// with a lone pixel), coordinates anywhere in i16 (wrapped or
     /// clamped), and coordinate slices longer than the run.
     #[test]
@@ -1884,18 +1885,9 @@ proptest! {
         let (u, v): (Vec<i16>, Vec<i16>) = uv.iter().copied().unzip();
         let n = u.len().saturating_sub(extra);
         let tex = Texture::new(&texels, 64, 32, 64).unwrap();
-        let sh = PerspectiveTexture::<_, RepeatPow2, 1>::new(tex).unwrap();
-        let mut run = vec![0u16; n];
-        sh.sample_pairs(&mut run, &u, &v);
-        for (j, &got) in run.iter().enumerate() {
-            prop_assert_eq!(got, tex.sample::<RepeatPow2>(u[j].into(), v[j].into()), "pixel {}", j);
-        }
+        unmasked_sampling_is_per_pixel::<RepeatPow2>(tex, &u, &v, n)?;
         let tex = Texture::new(&texels, 5, 3, 7).unwrap();
-        let sh = PerspectiveTexture::<_, Clamp, 1>::new(tex).unwrap();
-        sh.sample_pairs(&mut run, &u, &v);
-        for (j, &got) in run.iter().enumerate() {
-            prop_assert_eq!(got, tex.sample::<Clamp>(u[j].into(), v[j].into()), "pixel {}", j);
-        }
+        unmasked_sampling_is_per_pixel::<Clamp>(tex, &u, &v, n)?;
     }
 
     /// Exact mode where every pixel's u is a whole texel (E = 0 exactly:
@@ -1928,6 +1920,32 @@ proptest! {
         prop_assert_eq!((x * 256).rem_euclid(q), r);
         exact_runs_match_color([x as i32, 0, q as i32], [dx, 0, 0], len)?;
     }
+}
+
+/// `PerspectiveTexture::sample_by` (exact mode's unmasked sampling
+/// pass), one and two pixels an iteration, against `sample` at each of
+/// the first `n` pixels.
+#[cfg(feature = "perspective")]
+fn unmasked_sampling_is_per_pixel<W: crate::texture::Wrap>(
+    tex: Texture<'_, u16>,
+    u: &[i16],
+    v: &[i16],
+    n: usize,
+) -> Result<(), proptest::test_runner::TestCaseError> {
+    let sh = PerspectiveTexture::<_, W, 1>::new(tex).unwrap();
+    for pairs in [false, true] {
+        let mut run = vec![0u16; n];
+        if pairs {
+            sh.sample_by::<true>(&mut run, u, v);
+        } else {
+            sh.sample_by::<false>(&mut run, u, v);
+        }
+        for (j, &got) in run.iter().enumerate() {
+            let want = tex.sample::<W>(u[j].into(), v[j].into());
+            prop_assert_eq!(got, want, "pixel {} pairs {}", j, pairs);
+        }
+    }
+    Ok(())
 }
 
 /// `PerspectiveTexture<_, _, 1>::shade_run` on a slice against `color` at

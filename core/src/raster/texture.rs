@@ -27,9 +27,13 @@
 use super::PERSPECTIVE_Q_BITS;
 #[cfg(feature = "perspective")]
 use super::persp_div::{divide, divide_small, divide_small_wide, texels};
+#[cfg(feature = "perspective")]
+use super::shader::shade_per_pixel;
 use super::shader::{ScalableColor, SpanShader, VARYING_FRAC_BITS};
 use crate::target::Target;
 use crate::texture::{MaskedTexels, Texture, Wrap};
+#[cfg(feature = "perspective")]
+use crate::texture::{PAIRS, sample_coords};
 use core::marker::PhantomData;
 
 /// Affine texture mapping: varyings (u, v) in texels, 16.16.
@@ -65,8 +69,11 @@ impl<C: Copy, W: Wrap> SpanShader<2> for AffineTexture<'_, C, W> {
     // `shade_run` gives `color` at every pixel, so either route draws the
     // same pixels; with a depth buffer, testing the keys first and then
     // shading the passing runs in `shade_run`'s loop costs less than
-    // `color` per pixel inside the depth loop (`bash tests/mcu/run`:
-    // corridor-affine frame, I16F16 on ARMv6-M, 3 069 376 -> 2 868 398).
+    // `color` per pixel inside the depth loop (corridor-affine frame,
+    // I16F16 on ARMv6-M: 3 069 376 instructions with `PER_PIXEL`, 2 868 398
+    // without; the tests/mcu firmware's `sf corridor-affine I16F16 1|0`
+    // under QEMU, counted by `../shared/tools/qemu-prof`; the second is
+    // the figure `bash tests/mcu/run` published).
     const PER_PIXEL: bool = false;
 
     #[inline]
@@ -97,6 +104,10 @@ impl<C: Copy, W: Wrap> SpanShader<2> for AffineTexture<'_, C, W> {
             m.fill_run(pixels, (start[0], start[1]), (step[0], step[1]));
             return;
         }
+        // Not `shade_per_pixel`: with it here, the corridor-affine frame
+        // (f32, Cortex-M4) took 2 033 058 instructions against 1 943 019,
+        // though this loop does the same (tests/mcu firmware, `sf
+        // corridor-affine f32 1|0` under `../shared/tools/qemu-prof`).
         let mut v = start;
         target.fill_with(y, x, len, || {
             let c = self.color(&v);
@@ -223,6 +234,8 @@ impl<C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'_, C, W, N> {
         let Some(mut a) = divide_small(&v) else {
             return false;
         };
+        // A copy: read from `self` in `fill_small`, ARMv6-M ipp persp16
+        // was 34.69 against 34.19.
         let masked = self.masked;
         let mut rest = pixels;
         while rest.len() > n {
@@ -253,12 +266,8 @@ impl<C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'_, C, W, N> {
             let Some(b) = divide_small(&last) else {
                 return false;
             };
-            self.fill_small(
-                masked,
-                rest,
-                a,
-                ((b.0 - a.0) / (seg - 1), (b.1 - a.1) / (seg - 1)),
-            );
+            let d = ((b.0 - a.0) / (seg - 1), (b.1 - a.1) / (seg - 1));
+            self.fill_small(masked, rest, a, d);
         } else {
             self.fill_small(masked, rest, a, (0, 0));
         }
@@ -416,41 +425,25 @@ impl<C: Copy, W: Wrap, const N: u32> PerspectiveTexture<'_, C, W, N> {
     fn sample_run(&self, run: &mut [C], u: &[i16], v: &[i16]) {
         if let Some(m) = &self.masked {
             m.sample_run(run, u, v);
-        } else if cfg!(all(target_arch = "arm", not(target_has_atomic = "ptr"))) {
-            self.sample_pairs(run, u, v);
         } else {
-            for ((p, &x), &y) in run.iter_mut().zip(u).zip(v) {
-                *p = self.tex.sample::<W>(x.into(), y.into());
-            }
+            self.sample_by::<{ PAIRS }>(run, u, v);
         }
     }
 
-    /// [`Self::sample_run`] two pixels an iteration, ARMv6-M's route: the
-    /// texture's masks, stride and size, which it reloads from the stack,
-    /// then serve both. `bash tests/mcu/run`: ipp persp 60.59 -> 58.34,
-    /// corridor frame 7 414 592 -> 7 289 505, for 168 bytes. On the
-    /// Cortex-M4 the pairs cost more (ipp 43.76 -> 44.58, f32 corridor
-    /// frame +1.5 %), and x86-64 was even (`workload fill persp`, callgrind
-    /// 51.29 -> 51.25 instructions per pixel).
+    /// [`Self::sample_run`] without masks, two pixels an iteration with
+    /// `P` (ARMv6-M's route: the texture's masks, stride and size, which it
+    /// reloads from the stack, then serve both). `bash tests/mcu/run`: ipp
+    /// persp 60.59 -> 58.34, corridor frame 7 414 592 -> 7 289 505, for
+    /// 168 bytes. On the Cortex-M4 the pairs cost more (ipp 43.76 ->
+    /// 44.58, f32 corridor frame +1.5 %), and x86-64 was even (`workload
+    /// fill persp`, callgrind 51.29 -> 51.25 instructions per pixel).
+    /// (Those figures predate the masked route, which the built-in scenes
+    /// now take.)
     #[inline(always)]
-    pub(super) fn sample_pairs(&self, run: &mut [C], u: &[i16], v: &[i16]) {
-        let n = run.len().min(u.len()).min(v.len());
-        let (Some(run), Some(u), Some(v)) = (run.get_mut(..n), u.get(..n), v.get(..n)) else {
-            return;
-        };
-        let mut pairs = run.chunks_exact_mut(2);
-        for ((p, x), y) in (&mut pairs).zip(u.chunks_exact(2)).zip(v.chunks_exact(2)) {
-            if let ([p0, p1], [x0, x1], [y0, y1]) = (p, x, y) {
-                *p0 = self.tex.sample::<W>((*x0).into(), (*y0).into());
-                *p1 = self.tex.sample::<W>((*x1).into(), (*y1).into());
-            }
-        }
-        // An odd run's last pixel.
-        if let (Some(p), Some(&x), Some(&y)) =
-            (pairs.into_remainder().first_mut(), u.last(), v.last())
-        {
-            *p = self.tex.sample::<W>(x.into(), y.into());
-        }
+    pub(super) fn sample_by<const P: bool>(&self, run: &mut [C], u: &[i16], v: &[i16]) {
+        sample_coords::<_, P>(run, u, v, |x, y| {
+            Some(self.tex.sample::<W>(x.into(), y.into()))
+        });
     }
 
     /// One run from (u, v) = `a` by `d`, every value within i32 (see
@@ -582,14 +575,7 @@ impl<C: Copy, W: Wrap, const N: u32> SpanShader<3> for PerspectiveTexture<'_, C,
                 self.exact_runs(pixels, start, step);
                 return;
             }
-            let mut v = start;
-            target.fill_with(y, x, len, || {
-                let c = self.color(&v);
-                for (vk, sk) in v.iter_mut().zip(&step) {
-                    *vk = vk.wrapping_add(*sk);
-                }
-                c
-            });
+            shade_per_pixel(self, target, (y, x, len), start, step);
             return;
         }
         // (u, v) from a reciprocal at the first pixel of every run of N

@@ -281,11 +281,11 @@ impl<C: Copy> MaskedTexels<'_, C> {
     pub(crate) fn sample_run(&self, run: &mut [C], u: &[i16], v: &[i16]) {
         // Two pixels an iteration on ARMv6-M, whose seven low registers
         // cannot hold the loop: the masks and the texture, reloaded from
-        // the stack, serve both (`bash tests/mcu/run`, ipp persp 54.71 ->
-        // 52.38). One at a time elsewhere.
-        self.sample_run_by::<{ cfg!(all(target_arch = "arm", not(target_has_atomic = "ptr"))) }>(
-            run, u, v,
-        );
+        // the stack, serve both (ipp persp 54.71 one at a time, 52.38 in
+        // pairs: the tests/mcu firmware's `fill persp full|half` under
+        // QEMU, counted by `../shared/tools/qemu-prof`). One at a time
+        // elsewhere.
+        self.sample_run_by::<{ PAIRS }>(run, u, v);
     }
 
     /// [`Self::sample_run`], two pixels an iteration with `PAIRS` (both
@@ -301,38 +301,58 @@ impl<C: Copy> MaskedTexels<'_, C> {
         let (rs, um) = (self.row_shift & 31, self.u_mask);
         // Each coordinate's low 16 bits are enough (both sides divide
         // 2^16); zero-extended, ARMv6-M loads them with an offset.
-        let texel = |x: i16, y: i16| {
+        sample_coords::<_, PAIRS>(run, u, v, |x, y| {
             let i = (((y as u16 as u32) << rs) | (x as u16 as u32 & um)) as usize;
             t.get(i & last).copied()
-        };
-        let m = run.len().min(u.len()).min(v.len());
-        let (Some(run), Some(u), Some(v)) = (run.get_mut(..m), u.get(..m), v.get(..m)) else {
-            return;
-        };
-        if PAIRS {
-            let mut pairs = run.chunks_exact_mut(2);
-            for ((p, x), y) in (&mut pairs).zip(u.chunks_exact(2)).zip(v.chunks_exact(2)) {
-                if let ([p0, p1], [x0, x1], [y0, y1]) = (p, x, y) {
-                    if let Some(c) = texel(*x0, *y0) {
-                        *p0 = c;
-                    }
-                    if let Some(c) = texel(*x1, *y1) {
-                        *p1 = c;
-                    }
+        });
+    }
+}
+
+/// Whether the texel-coordinate sampling loops ([`sample_coords`]) take two
+/// pixels an iteration: on ARMv6-M, whose seven low registers cannot hold
+/// them, so values reloaded from the stack serve two pixels.
+#[cfg(feature = "perspective")]
+pub(crate) const PAIRS: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "ptr")));
+
+/// `run[j] = texel(u[j], v[j])` where `texel` answers, over the shortest of
+/// the three slices; two pixels an iteration with `P` ([`PAIRS`]). The one
+/// loop of exact perspective mode's sampling pass, masked or not.
+#[cfg(feature = "perspective")]
+#[inline(always)]
+pub(crate) fn sample_coords<C, const P: bool>(
+    run: &mut [C],
+    u: &[i16],
+    v: &[i16],
+    texel: impl Fn(i16, i16) -> Option<C>,
+) {
+    let m = run.len().min(u.len()).min(v.len());
+    let (Some(run), Some(u), Some(v)) = (run.get_mut(..m), u.get(..m), v.get(..m)) else {
+        return;
+    };
+    if P {
+        let mut pairs = run.chunks_exact_mut(2);
+        for ((p, x), y) in (&mut pairs).zip(u.chunks_exact(2)).zip(v.chunks_exact(2)) {
+            if let ([p0, p1], [x0, x1], [y0, y1]) = (p, x, y) {
+                if let Some(c) = texel(*x0, *y0) {
+                    *p0 = c;
+                }
+                if let Some(c) = texel(*x1, *y1) {
+                    *p1 = c;
                 }
             }
-            if let (Some(p), Some(&x), Some(&y)) =
-                (pairs.into_remainder().first_mut(), u.last(), v.last())
-            {
-                if let Some(c) = texel(x, y) {
-                    *p = c;
-                }
+        }
+        // An odd run's last pixel.
+        if let (Some(p), Some(&x), Some(&y)) =
+            (pairs.into_remainder().first_mut(), u.last(), v.last())
+        {
+            if let Some(c) = texel(x, y) {
+                *p = c;
             }
-        } else {
-            for ((p, &x), &y) in run.iter_mut().zip(u).zip(v) {
-                if let Some(c) = texel(x, y) {
-                    *p = c;
-                }
+        }
+    } else {
+        for ((p, &x), &y) in run.iter_mut().zip(u).zip(v) {
+            if let Some(c) = texel(x, y) {
+                *p = c;
             }
         }
     }

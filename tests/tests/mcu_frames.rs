@@ -6,9 +6,10 @@
 //! the pixels the instructions-per-pixel figures divide by, W1 covers the
 //! bunny's documented pixel range). `tests/mcu/run` sets `MCU_FRAMES_DIR`
 //! to a directory of firmware `frames` outputs (`TRIPLE.txt`); then
-//! `frames_match_the_mcu` requires every I16F16 frame hash to equal the
-//! host's and prints, for every f32 frame, how many pixels differ from the
-//! host's and by how much:
+//! `frames_match_the_mcu` requires every I16F16 frame hash (the scenes'
+//! and the fill-rate quads', `fill-MODE`) to equal the host's and prints,
+//! for every f32 frame, how many pixels differ from the host's and by how
+//! much:
 //!
 //! ```text
 //! fxhash SCENE TRIPLE 0x… equal
@@ -114,6 +115,19 @@ fn strips_equal_a_whole_frame() {
     }
 }
 
+/// The host's hash of every fill-rate mode's full-width frame.
+fn fill_hashes() -> Vec<(&'static str, u64)> {
+    let mut color = vec![Color::BLACK; FRAME_PIXELS];
+    let mut depth = vec![0u16; FRAME_PIXELS];
+    frames::FILL_MODES
+        .iter()
+        .map(|&mode| {
+            let h = frames::fill_hash(mode, &mut color, &mut depth).expect("a known mode");
+            (mode, h)
+        })
+        .collect()
+}
+
 #[test]
 fn fill_quads_cover_the_counted_pixels() {
     let mut color = vec![Color::BLACK; FRAME_PIXELS];
@@ -204,6 +218,9 @@ fn frames_match_the_mcu() {
             println!("frame {name} I16F16 {:#018x}", strips::<I16F16>(name).0);
             println!("frame {name} f32 {:#018x}", strips::<f32>(name).0);
         }
+        for (mode, h) in fill_hashes() {
+            println!("frame fill-{mode} I16F16 {h:#018x}");
+        }
         return;
     };
     let mut files: Vec<_> = std::fs::read_dir(&dir)
@@ -217,10 +234,26 @@ fn frames_match_the_mcu() {
         .iter()
         .map(|&n| (n, strips::<I16F16>(n).0, strips::<f32>(n)))
         .collect();
+    let fills = fill_hashes();
     let mut mismatches = 0;
     for file in files {
         let triple = file.file_stem().unwrap().to_string_lossy().to_string();
         let mcu = parse(&std::fs::read_to_string(&file).unwrap());
+        // The fill-rate frames: I16F16 only, compared like the scenes'.
+        for (mode, fx) in &fills {
+            let name = format!("fill-{mode}");
+            let got = mcu
+                .hashes
+                .iter()
+                .find(|(n, sc, _)| *n == name && sc == "I16F16");
+            match got.map(|h| h.2) {
+                Some(h) if h == *fx => println!("fxhash {name} {triple} {h:#018x} equal"),
+                other => {
+                    println!("fxhash {name} {triple} {other:x?} DIFFERS from host {fx:#018x}");
+                    mismatches += 1;
+                }
+            }
+        }
         for (name, fx, (fl_hash, fl_px)) in &host {
             let get = |s: &str| {
                 mcu.hashes

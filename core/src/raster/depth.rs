@@ -123,7 +123,7 @@ impl StoredDepth for u16 {
     /// with the texel fetch shuffled registers at every pixel).
     #[inline]
     fn passes(z: i32, stored: Self) -> Option<Self> {
-        if cfg!(all(target_arch = "arm", not(target_has_atomic = "ptr"))) {
+        if crate::scalar::ARMV6M {
             passes16_wide(z, stored)
         } else {
             passes16_narrow(z, stored)
@@ -468,7 +468,10 @@ fn takes_split_route(n: usize) -> bool {
 /// 9 028 943 -> 9 069 577 (0.45 %). 344 bytes more in the Gouraud
 /// firmware, 636 in the texture one (an instance per shader). Short spans
 /// keep the fused loop: a run costs two calls and the loop's set-up. The
-/// Cortex-M4's figures are at [`split_fill`].
+/// Cortex-M4's figures are at [`split_fill`]. On ARMv6-M the scan
+/// converter now hands such spans to the shader's own run loop instead
+/// ([`shades_runs`]); this stays the route of [`DepthTest::test_write`]
+/// there, and the scan converter's on the Cortex-M4.
 #[cfg(feature = "depth")]
 #[inline(never)]
 fn split_write<K: StoredDepth, C, F: FnMut(u32) -> C>(
@@ -499,6 +502,30 @@ fn split_write<K: StoredDepth, C, F: FnMut(u32) -> C>(
             }
         }
     });
+}
+
+/// Whether the scan converter tests the keys of a depth-tested span of
+/// `n` pixels first and then shades each passing run by the shader's
+/// [`SpanShader::shade_run`](crate::raster::SpanShader::shade_run),
+/// for a shader whose colors it would otherwise write per pixel in
+/// [`DepthTest::test_write`]'s fused loop: spans of 64 pixels or more,
+/// on ARMv6-M only. [`Gouraud`](crate::raster::Gouraud)'s `shade_run`
+/// writes a run in a loop of its own with registers to spare, where the
+/// fused loop spills on ARMv6-M's seven low registers.
+///
+/// ARMv6-M, the [`split_write`] route -> this one: ipp Gouraud + depth,
+/// the shader alone, 13.38 -> 11.96; the banded bunny scene frame (none
+/// of whose spans is this long) 9 064 719 -> 9 008 246, but W2
+/// 5 975 200 -> 6 019 773 (0.75 %: the scan converter's registers). On
+/// the Cortex-M4 the same route took W2 (f32) from 3 771 954 to
+/// 3 821 421 and the bunny frame from 6 118 897 to 6 221 999, for
+/// Gouraud + depth 13.50 -> 11.69, so it keeps [`split_write`]. (The
+/// figures after the change are `bash tests/mcu/run`'s; the Cortex-M4's
+/// and the 13.38 came from `../shared/tools/qemu-prof` over the same
+/// firmware's `fill`, `wl` and `sf` runs.)
+#[inline(always)]
+pub(super) fn shades_runs(n: usize) -> bool {
+    crate::scalar::ARMV6M && n >= 64
 }
 
 /// Tests and stores the keys of `row` against the depths `z + i·dz`, and

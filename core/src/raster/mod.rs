@@ -546,13 +546,18 @@ where
                 };
                 if Z::ENABLED && Sh::PER_PIXEL {
                     if let Some(pixels) = target.span_mut(y, x, len) {
-                        // Depth test and write fused in one loop.
+                        // Depth test and write fused in one loop; on
+                        // ARMv6-M a long span of a varying shader falls
+                        // through to the keys first and then `shade_run`
+                        // per passing run (see `shades_runs`).
                         if let Some(c) = solid {
                             depth.test_fill(y, x, z, dz, pixels, c);
-                        } else {
-                            depth.test_write(y, x, z, dz, pixels, |i| shader.color(&at(i)));
+                            break 'span true;
                         }
-                        break 'span true;
+                        if !depth::shades_runs(pixels.len()) {
+                            depth.test_write(y, x, z, dz, pixels, |i| shader.color(&at(i)));
+                            break 'span true;
+                        }
                     }
                 }
                 if let Some(c) = solid {

@@ -62,7 +62,7 @@ pub(crate) fn divide(v: &[i32; 3]) -> (i64, i64) {
 /// tests/mcu firmware's `fill` runs by `../shared/tools/qemu-prof`).
 #[inline]
 pub(crate) fn divide_small(v: &[i32; 3]) -> Option<(i32, i32)> {
-    if cfg!(all(target_arch = "arm", not(target_has_atomic = "ptr"))) {
+    if crate::scalar::ARMV6M {
         quotients(v).or_else(|| divide_small_wide(v))
     } else {
         divide_small_wide(v)

@@ -369,7 +369,7 @@ pub(crate) fn perspective16(x: i32, y: i32, z: i32, f: i32) -> Option<(i32, i32,
 /// smaller). Elsewhere `leading_zeros` is one instruction.
 #[inline(always)]
 pub(crate) fn normalize_shift(d: u32) -> u32 {
-    if cfg!(all(target_arch = "arm", not(target_has_atomic = "ptr"))) {
+    if crate::scalar::ARMV6M {
         normalize_shift_smeared(d)
     } else {
         d.leading_zeros().wrapping_sub(1)

@@ -24,6 +24,12 @@
 //! - Floats follow IEEE 754: overflow gives ±∞, which kernels detect with
 //!   [`Scalar::is_finite`].
 
+/// Whether the build is for ARMv6-M (Cortex-M0/M0+/M1: 32-bit Arm without
+/// atomic read-modify-write, a divide instruction or a 64-bit multiply),
+/// where a few routines take a different route, each with its measured
+/// reason beside it. Here because every layer uses `scalar`.
+pub(crate) const ARMV6M: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "ptr")));
+
 mod fixed_point;
 pub(crate) use fixed_point::normalize_shift;
 #[cfg(all(

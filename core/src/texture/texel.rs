@@ -312,7 +312,7 @@ impl<C: Copy> MaskedTexels<'_, C> {
 /// pixels an iteration: on ARMv6-M, whose seven low registers cannot hold
 /// them, so values reloaded from the stack serve two pixels.
 #[cfg(feature = "perspective")]
-pub(crate) const PAIRS: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "ptr")));
+pub(crate) const PAIRS: bool = crate::scalar::ARMV6M;
 
 /// `run[j] = texel(u[j], v[j])` where `texel` answers, over the shortest of
 /// the three slices; two pixels an iteration with `P` ([`PAIRS`]). The one

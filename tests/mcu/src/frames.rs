@@ -12,7 +12,8 @@
 //!   raster path for every scene but `spheres`, which is the ray path's
 //!   (spheres are ray-only). Each finished row goes to a callback.
 //! - [`fill`]: one fill-rate polygon per span shader, covering all 240 rows
-//!   and the full or half width, filled [`FILL_REPEAT`] times.
+//!   and the full or half width, filled [`FILL_REPEAT`] times;
+//!   [`fill_hash`] hashes the full-width frame.
 //! - [`Workload`]: W1/W2 (`/work/shared/WORKLOADS.md`) on the built-in
 //!   quantized bunny.
 
@@ -326,12 +327,29 @@ pub fn fill(mode: &str, halve: bool, color: &mut [Color], depth: &mut [u16]) -> 
         }
         _ => return None,
     }
+    // Counted without a branch, so that the count costs the same however
+    // many pixels were drawn and cancels in the full-minus-half difference
+    // (the per-pixel figures are the shader's alone): `x + 0xFFFF` carries
+    // into bit 16 exactly when the pixel is not black (0).
     Some(
         black_box(&*color)
             .iter()
-            .filter(|&&c| c != Rgb565::BLACK)
-            .count() as u32,
+            .map(|&c| (u32::from(c.into_storage()) + 0xFFFF) >> 16)
+            .sum(),
     )
+}
+
+/// The hash of the whole frame [`fill`] leaves for `mode` at full width:
+/// the fill-rate quads' spans are all 320 or more pixels long, so they
+/// take the long-span routes (on ARMv6-M the split depth loops and
+/// Gouraud's run loop) that the scenes' shorter spans seldom reach. Every
+/// depth fill passes every pixel (see [`fill`]), so the frame is the last
+/// fill's colors. `None` for an unknown mode.
+pub fn fill_hash(mode: &str, color: &mut [Color], depth: &mut [u16]) -> Option<u64> {
+    fill(mode, false, color, depth)?;
+    let mut h = Fnv::new();
+    h.pixels(color.get(..FRAME_PIXELS)?);
+    Some(h.0)
 }
 
 // ---------------------------------------------------------------- W1 / W2

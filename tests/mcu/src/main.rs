@@ -18,7 +18,9 @@
 //!   at 320×240 through bands and prints `frame SCENE SCALAR 0x…` (FNV-1a
 //!   of the frame); f32 frames are also dumped row by row as
 //!   `row SCENE f32 Y HEX…` (four hex digits per RGB565 pixel) so that the
-//!   host can count differing pixels.
+//!   host can count differing pixels. Then, for every fill-rate mode
+//!   ([`frames::FILL_MODES`]), `frame fill-MODE I16F16 0x…`: the hash of
+//!   its full-width fill frame ([`frames::fill_hash`]).
 //! - `fill MODE full|half`: fills the fill-rate quad of span shader `MODE`
 //!   ([`frames::FILL_MODES`]) [`frames::FILL_REPEAT`] times at full or half
 //!   width. The difference in guest instructions over the difference in
@@ -305,6 +307,15 @@ fn all_frames() -> bool {
                     hprintln!("frame {} {} error {:?}", name, scalar, e);
                     ok = false;
                 }
+            }
+        }
+    }
+    for mode in frames::FILL_MODES {
+        match frames::fill_hash(mode, color, depth) {
+            Some(h) => hprintln!("frame fill-{} I16F16 {:#018x}", mode, h),
+            None => {
+                hprintln!("frame fill-{} I16F16 error", mode);
+                ok = false;
             }
         }
     }

@@ -114,7 +114,8 @@ fn tiny_report_writes_parseable_tables_and_plots() {
 /// simulator) give: the report is generated too, and `tests/mcu/run`
 /// changing those tables must be followed by rerunning it. (Host times
 /// and errors depend on the machine and the sample size, so only these
-/// columns are compared.)
+/// columns are compared, and the one recommendation sentence built from
+/// Cortex-M figures alone.)
 #[test]
 fn committed_report_has_the_current_cortex_m_figures() {
     let committed = std::fs::read_to_string(concat!(
@@ -135,11 +136,21 @@ fn committed_report_has_the_current_cortex_m_figures() {
     };
     let (old, new) = (mcu(&committed), mcu(&fresh));
     assert_eq!(old.len(), new.len(), "the report's rows changed");
+    let stale = "docs/report/accuracy.md is stale; rerun \
+                 `cargo run --release -p sightline-sim -- report --out docs/report`";
     for (o, n) in old.iter().zip(&new) {
-        assert_eq!(
-            o, n,
-            "docs/report/accuracy.md is stale; rerun \
-             `cargo run --release -p sightline-sim -- report --out docs/report`"
-        );
+        assert_eq!(o, n, "{stale}");
     }
+    // The texture recommendation's Cortex-M0 sentence (span-loop figures
+    // from `docs/mcu/tables.md`), up to where its host ratio begins.
+    let m0 = |md: &str| -> Option<String> {
+        let rest = md.get(md.find("On a Cortex-M0-class core")?..)?;
+        Some(rest.get(..rest.find("the exact cost.")?)?.to_string())
+    };
+    let want = m0(&fresh);
+    assert!(
+        want.is_some(),
+        "the texture recommendation lost its Cortex-M0 sentence"
+    );
+    assert_eq!(m0(&committed), want, "{stale}");
 }

@@ -340,8 +340,8 @@ pub fn fill(mode: &str, halve: bool, color: &mut [Color], depth: &mut [u16]) -> 
 }
 
 /// The hash of the whole frame [`fill`] leaves for `mode` at full width:
-/// the fill-rate quads' spans are all 320 or more pixels long, so they
-/// take the long-span routes (on ARMv6-M the split depth loops and
+/// each of the quad's 240 spans is 320 pixels long, so they all take
+/// the long-span routes (on ARMv6-M the split depth loops and
 /// Gouraud's run loop) that the scenes' shorter spans seldom reach. Every
 /// depth fill passes every pixel (see [`fill`]), so the frame is the last
 /// fill's colors. `None` for an unknown mode.

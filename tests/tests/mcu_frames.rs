@@ -211,6 +211,21 @@ fn parse(text: &str) -> McuFrames {
     McuFrames { hashes, rows }
 }
 
+/// Prints the `fxhash` line of frame `name` on `triple` (the firmware's
+/// hash `got`, the host's `want`); returns 1 if they differ, else 0.
+fn compare_fx(name: &str, triple: &str, got: Option<u64>, want: u64) -> u32 {
+    match got {
+        Some(h) if h == want => {
+            println!("fxhash {name} {triple} {h:#018x} equal");
+            0
+        }
+        other => {
+            println!("fxhash {name} {triple} {other:x?} DIFFERS from host {want:#018x}");
+            1
+        }
+    }
+}
+
 #[test]
 fn frames_match_the_mcu() {
     let Ok(dir) = std::env::var("MCU_FRAMES_DIR") else {
@@ -246,13 +261,7 @@ fn frames_match_the_mcu() {
                 .hashes
                 .iter()
                 .find(|(n, sc, _)| *n == name && sc == "I16F16");
-            match got.map(|h| h.2) {
-                Some(h) if h == *fx => println!("fxhash {name} {triple} {h:#018x} equal"),
-                other => {
-                    println!("fxhash {name} {triple} {other:x?} DIFFERS from host {fx:#018x}");
-                    mismatches += 1;
-                }
-            }
+            mismatches += compare_fx(&name, &triple, got.map(|h| h.2), *fx);
         }
         for (name, fx, (fl_hash, fl_px)) in &host {
             let get = |s: &str| {
@@ -261,13 +270,7 @@ fn frames_match_the_mcu() {
                     .find(|(n, sc, _)| n == name && sc == s)
                     .map(|h| h.2)
             };
-            match get("I16F16") {
-                Some(h) if h == *fx => println!("fxhash {name} {triple} {h:#018x} equal"),
-                other => {
-                    println!("fxhash {name} {triple} {other:x?} DIFFERS from host {fx:#018x}");
-                    mismatches += 1;
-                }
-            }
+            mismatches += compare_fx(name, &triple, get("I16F16"), *fx);
             let Some(px) = mcu.rows.get(*name) else {
                 println!("fdiff {name} {triple} missing");
                 mismatches += 1;

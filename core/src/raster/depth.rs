@@ -447,8 +447,12 @@ fn split_fill<K: StoredDepth, C: Copy>(
 #[cfg(feature = "depth")]
 #[inline(always)]
 fn takes_split_route(n: usize) -> bool {
-    cfg!(target_arch = "arm") && n >= 64
+    cfg!(target_arch = "arm") && n >= LONG_SPAN
 }
+
+/// The span length from which depth-tested spans test their keys first
+/// ([`split_fill`], [`split_write`], [`shades_runs`]).
+const LONG_SPAN: usize = 64;
 
 /// [`fused_run`] for a span of 64 pixels or more on 32-bit Arm (as
 /// [`split_fill`] for one color): the keys first ([`passing_runs`]), then
@@ -525,7 +529,7 @@ fn split_write<K: StoredDepth, C, F: FnMut(u32) -> C>(
 /// firmware's `fill`, `wl` and `sf` runs.)
 #[inline(always)]
 pub(super) fn shades_runs(n: usize) -> bool {
-    crate::scalar::ARMV6M && n >= 64
+    crate::scalar::ARMV6M && n >= LONG_SPAN
 }
 
 /// Tests and stores the keys of `row` against the depths `z + i·dz`, and
